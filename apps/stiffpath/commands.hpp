@@ -1,0 +1,19 @@
+// Registration functions of the CLI's subcommands (one source file each) and shared output helpers.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace stiffpath::cli {
+
+void add_kin_command(CLI::App& app);
+void add_mechanism_command(CLI::App& app);
+void add_mobility_command(CLI::App& app);
+
+//! Prints a JSON document on stdout (two-space indent, newline).
+void print_json(const nlohmann::json& document);
+//! Rounds for display in JSON so that outputs are stable (12 significant digits).
+double tidy(double value);
+
+}  // namespace stiffpath::cli

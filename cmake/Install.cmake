@@ -1,0 +1,19 @@
+# Install the library, headers, CLI and a package config so that find_package(stiffpath) works.
+include(CMakePackageConfigHelpers)
+install(TARGETS stiffpath stiffpath_warnings EXPORT stiffpathTargets
+        LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
+        INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(TARGETS stiffpath_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(DIRECTORY include/stiffpath DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(DIRECTORY data/ DESTINATION ${CMAKE_INSTALL_DATADIR}/stiffpath)
+install(EXPORT stiffpathTargets NAMESPACE stiffpath:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/stiffpath)
+configure_package_config_file(cmake/stiffpathConfig.cmake.in
+  ${CMAKE_CURRENT_BINARY_DIR}/stiffpathConfig.cmake
+  INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/stiffpath)
+write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/stiffpathConfigVersion.cmake
+  COMPATIBILITY SameMinorVersion)
+install(FILES ${CMAKE_CURRENT_BINARY_DIR}/stiffpathConfig.cmake
+              ${CMAKE_CURRENT_BINARY_DIR}/stiffpathConfigVersion.cmake
+        DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/stiffpath)

@@ -1,0 +1,138 @@
+// CsvReader: streaming CSV parsing with precise error locations.
+#include "stiffpath/core/csv.hpp"
+
+#include <charconv>
+#include <cmath>
+
+namespace stiffpath::core {
+
+std::optional<double> parse_double(std::string_view text) noexcept {
+  while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
+  while (!text.empty() && (text.back() == ' ' || text.back() == '\t' || text.back() == '\r')) text.remove_suffix(1);
+  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
+  if (text.empty()) return std::nullopt;
+  double value = 0.0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+CsvReader::CsvReader(const std::string& path)
+    : owned_(std::make_unique<std::ifstream>(path, std::ios::binary)), in_(owned_.get()), label_(path) {
+  if (!*owned_) throw Error(SourceLocation{path}, "cannot open file");
+  std::vector<int> starts;
+  if (!read_record(header_, starts)) throw Error(SourceLocation{path}, "file is empty (no header line)");
+}
+
+CsvReader::CsvReader(std::istream& in, std::string label) : in_(&in), label_(std::move(label)) {
+  std::vector<int> starts;
+  if (!read_record(header_, starts)) throw Error(SourceLocation{label_}, "input is empty (no header line)");
+}
+
+bool CsvReader::read_record(std::vector<std::string>& fields, std::vector<int>& starts) {
+  while (std::getline(*in_, buffer_)) {
+    ++line_;
+    if (!buffer_.empty() && buffer_.back() == '\r') buffer_.pop_back();
+    if (buffer_.find_first_not_of(" \t") == std::string::npos || buffer_.front() == '#') continue;
+    fields.clear();
+    starts.clear();
+    std::string field;
+    bool quoted = false;
+    int start = 1;
+    for (std::size_t i = 0; i < buffer_.size(); ++i) {
+      const char c = buffer_[i];
+      if (quoted) {
+        if (c == '"' && i + 1 < buffer_.size() && buffer_[i + 1] == '"') {
+          field += '"';
+          ++i;
+        } else if (c == '"') {
+          quoted = false;
+        } else {
+          field += c;
+        }
+      } else if (c == '"') {
+        quoted = true;
+      } else if (c == ',') {
+        fields.push_back(std::move(field));
+        starts.push_back(start);
+        field.clear();
+        start = static_cast<int>(i) + 2;
+      } else {
+        field += c;
+      }
+    }
+    if (quoted) throw Error(SourceLocation{label_, line_, start}, "unterminated quoted field");
+    fields.push_back(std::move(field));
+    starts.push_back(start);
+    for (auto& f : fields) {
+      while (!f.empty() && (f.back() == ' ' || f.back() == '\t')) f.pop_back();
+      std::size_t lead = 0;
+      while (lead < f.size() && (f[lead] == ' ' || f[lead] == '\t')) ++lead;
+      f.erase(0, lead);
+    }
+    return true;
+  }
+  return false;
+}
+
+std::optional<std::size_t> CsvReader::find_column(std::string_view name) const {
+  for (std::size_t i = 0; i < header_.size(); ++i) {
+    if (header_[i] == name) return i;
+  }
+  return std::nullopt;
+}
+
+std::size_t CsvReader::column(std::string_view name) const {
+  if (auto index = find_column(name)) return *index;
+  std::string have;
+  for (const auto& h : header_) have += (have.empty() ? "" : ", ") + h;
+  throw Error(SourceLocation{label_, 1}, "missing column '" + std::string(name) + "' (header has: " + have + ")");
+}
+
+bool CsvReader::next() {
+  if (!read_record(fields_, starts_)) return false;
+  if (fields_.size() != header_.size()) {
+    throw Error(SourceLocation{label_, line_},
+                "row has " + std::to_string(fields_.size()) + " fields, the header has " +
+                    std::to_string(header_.size()));
+  }
+  return true;
+}
+
+SourceLocation CsvReader::where(std::size_t col) const {
+  return SourceLocation{label_, line_, col < starts_.size() ? starts_[col] : 0};
+}
+
+void CsvReader::fail(std::size_t col, const std::string& message) const {
+  const std::string name = col < header_.size() ? header_[col] : "#" + std::to_string(col + 1);
+  throw Error(where(col), "column '" + name + "': " + message);
+}
+
+std::string_view CsvReader::text(std::size_t col) const {
+  if (col >= fields_.size()) fail(col, "no such column in this row");
+  return fields_[col];
+}
+
+double CsvReader::number(std::size_t col) const {
+  const std::string_view cell = text(col);
+  if (cell.empty()) fail(col, "value is missing (empty cell)");
+  if (auto value = parse_double(cell)) return *value;
+  fail(col, "'" + std::string(cell) + "' is not a finite number");
+}
+
+std::optional<double> CsvReader::optional_number(std::size_t col) const {
+  if (text(col).empty()) return std::nullopt;
+  return number(col);
+}
+
+long CsvReader::integer(std::size_t col) const {
+  const std::string_view cell = text(col);
+  long value = 0;
+  const auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), value);
+  if (cell.empty() || ec != std::errc() || end != cell.data() + cell.size()) {
+    fail(col, "'" + std::string(cell) + "' is not an integer");
+  }
+  return value;
+}
+
+}  // namespace stiffpath::core
