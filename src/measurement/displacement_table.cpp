@@ -1,0 +1,141 @@
+// Reading, validating and writing the tidy displacement table (data/thesis/displacements.csv format).
+#include "stiffpath/measurement/displacement_table.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <set>
+#include <sstream>
+#include <tuple>
+
+#include "stiffpath/core/atomic_file.hpp"
+#include "stiffpath/core/csv.hpp"
+#include "stiffpath/core/embedded.hpp"
+#include "stiffpath/core/error.hpp"
+#include "stiffpath/core/units.hpp"
+
+namespace stiffpath::measurement {
+
+const char* to_string(ForceDirection direction) noexcept {
+  switch (direction) {
+    case ForceDirection::plus_x: return "+x";
+    case ForceDirection::minus_x: return "-x";
+    case ForceDirection::plus_y: return "+y";
+    case ForceDirection::minus_y: return "-y";
+  }
+  return "?";
+}
+
+double direction_x(ForceDirection d) noexcept {
+  return d == ForceDirection::plus_x ? 1.0 : d == ForceDirection::minus_x ? -1.0 : 0.0;
+}
+double direction_y(ForceDirection d) noexcept {
+  return d == ForceDirection::plus_y ? 1.0 : d == ForceDirection::minus_y ? -1.0 : 0.0;
+}
+
+DisplacementTable DisplacementTable::filter(const std::string& mechanism) const {
+  DisplacementTable out{source, {}};
+  for (const auto& row : rows) {
+    if (row.mechanism == mechanism) out.rows.push_back(row);
+  }
+  return out;
+}
+
+std::vector<std::string> DisplacementTable::mechanisms() const {
+  std::vector<std::string> out;
+  for (const auto& row : rows) {
+    if (std::find(out.begin(), out.end(), row.mechanism) == out.end()) out.push_back(row.mechanism);
+  }
+  return out;
+}
+
+namespace {
+ForceDirection parse_direction(const core::CsvReader& csv, std::size_t col) {
+  const std::string_view text = csv.text(col);
+  if (text == "+x" || text == "x") return ForceDirection::plus_x;
+  if (text == "-x") return ForceDirection::minus_x;
+  if (text == "+y" || text == "y") return ForceDirection::plus_y;
+  if (text == "-y") return ForceDirection::minus_y;
+  csv.fail(col, "'" + std::string(text) + "' is not a force direction (+x, -x, +y, -y)");
+}
+
+std::optional<double> scaled(const core::CsvReader& csv, std::size_t col, double factor) {
+  const auto value = csv.optional_number(col);
+  return value ? std::optional<double>(*value * factor) : std::nullopt;
+}
+
+DisplacementTable read_table(core::CsvReader& csv, const std::string& source) {
+  const auto c_mech = csv.column("mechanism"), c_dir = csv.column("direction"), c_point = csv.column("point");
+  const auto c_x = csv.column("x_mm"), c_y = csv.column("y_mm"), c_step = csv.column("step");
+  const auto c_kgf = csv.column("force_kgf"), c_fn = csv.column("F_N"), c_nom = csv.column("F_nominal_N");
+  const auto c_dx = csv.column("dx_mm"), c_dy = csv.column("dy_mm"), c_dz = csv.column("dz_mm");
+  const auto c_rx = csv.column("rx_deg"), c_ry = csv.column("ry_deg");
+
+  DisplacementTable table{source, {}};
+  std::set<std::tuple<std::string, int, std::string, int>> seen;
+  while (csv.next()) {
+    DisplacementRow row;
+    row.line = csv.line();
+    row.mechanism = std::string(csv.text(c_mech));
+    if (row.mechanism.empty()) csv.fail(c_mech, "value is missing (empty cell)");
+    row.direction = parse_direction(csv, c_dir);
+    row.point = std::string(csv.text(c_point));
+    if (row.point.empty()) csv.fail(c_point, "value is missing (empty cell)");
+    row.x_m = units::mm_to_m(csv.number(c_x));
+    row.y_m = units::mm_to_m(csv.number(c_y));
+    const long step = csv.integer(c_step);
+    if (step < 1) csv.fail(c_step, fmt::format("load step must be 1 or more (step 0 is the reference), got {}", step));
+    row.step = static_cast<int>(step);
+    row.force_kgf = csv.number(c_kgf);
+    row.force_N = csv.number(c_fn);
+    if (!(row.force_N > 0.0)) csv.fail(c_fn, fmt::format("force must be positive, got {}", row.force_N));
+    row.nominal_force_N = csv.number(c_nom);
+    row.dx_m = scaled(csv, c_dx, 1e-3);
+    row.dy_m = scaled(csv, c_dy, 1e-3);
+    row.dz_m = scaled(csv, c_dz, 1e-3);
+    row.rx_rad = scaled(csv, c_rx, units::deg_to_rad(1.0));
+    row.ry_rad = scaled(csv, c_ry, units::deg_to_rad(1.0));
+    const auto key = std::make_tuple(row.mechanism, static_cast<int>(row.direction), row.point, row.step);
+    if (!seen.insert(key).second) {
+      throw Error(csv.where(),
+                  fmt::format("duplicated row: mechanism {}, direction {}, point {}, step {} appears twice",
+                              row.mechanism, to_string(row.direction), row.point, row.step));
+    }
+    table.rows.push_back(std::move(row));
+  }
+  if (table.rows.empty()) throw Error(SourceLocation{source}, "no data rows");
+  return table;
+}
+
+std::string cell(const std::optional<double>& v, double factor, int decimals) {
+  return v ? fmt::format("{:.{}f}", *v * factor, decimals) : std::string();
+}
+}  // namespace
+
+DisplacementTable load_displacement_table(const std::string& path) {
+  if (path == "thesis") {
+    const auto text = core::find_embedded("thesis/displacements.csv");
+    if (!text) throw Error("the thesis data set is not built into this binary");
+    std::istringstream in{std::string(*text)};
+    core::CsvReader csv(in, "thesis/displacements.csv");
+    return read_table(csv, "thesis");
+  }
+  core::CsvReader csv(path);
+  return read_table(csv, path);
+}
+
+void save_displacement_table(const DisplacementTable& table, const std::string& path) {
+  core::AtomicFile file(path);
+  auto& out = file.stream();
+  out << kDisplacementColumns << '\n';
+  for (const auto& r : table.rows) {
+    out << fmt::format("{},{},{},{:.3f},{:.3f},{},{:.4f},{:.4f},{:.4f},{},{},{},{},{}\n", r.mechanism,
+                       to_string(r.direction), r.point, units::m_to_mm(r.x_m), units::m_to_mm(r.y_m), r.step,
+                       r.force_kgf, r.force_N, r.nominal_force_N, cell(r.dx_m, 1e3, 6), cell(r.dy_m, 1e3, 6),
+                       cell(r.dz_m, 1e3, 6), cell(r.rx_rad, units::rad_to_deg(1.0), 6),
+                       cell(r.ry_rad, units::rad_to_deg(1.0), 6));
+  }
+  file.commit();
+}
+
+}  // namespace stiffpath::measurement
