@@ -1,0 +1,49 @@
+// Leave-one-out cross-validation of every compliance model over the measurement grid.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "stiffpath/compliance/model.hpp"
+#include "stiffpath/compliance/point_fit.hpp"
+
+namespace stiffpath::compliance {
+
+//! The held-out point's error for one method. The reference is the measurement at the highest load
+//! step of each load direction (250 N nominal in the thesis); the error per point is the mean of
+//! |Δx_pred − Δx_meas| and |Δy_pred − Δy_meas| over both load directions (µm), which is the
+//! measure behind the "about 90 µm" for the thesis's bilinear interpolation on OC.
+struct CvPoint {
+  std::string id;
+  Vec2 position;
+  bool predicted = false;          //!< false where the method cannot predict the point (grid corners)
+  bool interior = false;           //!< not on the grid's boundary (x2y2, x2y3, x2y4 on the thesis grid)
+  double mean_abs_error_um = 0.0;  //!< mean absolute component error
+  double mean_vector_error_um = 0.0;  //!< mean |Δ_pred − Δ_meas| over the load directions
+};
+
+struct CvMethod {
+  std::string method;              //!< "bilinear", "symmetric", "physical-0", "physical", "physical-2"
+  std::string description;
+  std::vector<CvPoint> points;
+  int predicted = 0;
+  double mean_um = 0.0;            //!< over the points the method can predict
+  double max_um = 0.0;
+  double interior_mean_um = 0.0;   //!< over the interior points
+};
+
+struct CvReport {
+  std::string source;
+  std::string mechanism;
+  ForceConvention convention = ForceConvention::measured;
+  ZeroForce zero_force = ZeroForce::relative;
+  std::vector<CvMethod> methods;
+};
+
+//! Runs leave-one-out for every method on one mechanism's samples. Grid methods predict a held-out
+//! node by linear interpolation from its neighbours along x (else along y) — the bilinear scheme on
+//! the grid without that node; the physical models are refitted without the point.
+CvReport cross_validate(const std::vector<PointSamples>& points, double link_length_m, const std::string& source,
+                        ZeroForce zero_force = ZeroForce::relative);
+
+}  // namespace stiffpath::compliance

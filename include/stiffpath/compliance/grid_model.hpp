@@ -1,0 +1,61 @@
+// Compliance on the measurement grid with bilinear interpolation between nodes (thesis eq. 4.12).
+#pragma once
+
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "stiffpath/compliance/grid.hpp"
+#include "stiffpath/compliance/model.hpp"
+#include "stiffpath/compliance/point_fit.hpp"
+
+namespace stiffpath::compliance {
+
+//! One grid node: the compliance matrix and zero-force deflection there, with its fit statistics.
+struct GridNode {
+  std::string id;          //!< "x1y1" …
+  Mat2 compliance;         //!< m/N
+  Vec2 offset;             //!< m (thesis_raw mode only)
+  nlohmann::json stats;    //!< fit statistics, carried into model files
+};
+
+//! Node values interpolated bilinearly (eq. 4.12) over a tensor grid. Used by the thesis's model
+//! ("bilinear": nodes from eqs. 4.8–4.11) and by the reciprocal model ("symmetric": nodes fitted
+//! with C = Cᵀ ≻ 0). Outside the grid: clamp to the rectangle, or extend the edge cells linearly.
+class GridModel final : public Model {
+ public:
+  //! `nodes` ordered by Grid::node(i, j); throws stiffpath::Error on a size mismatch.
+  GridModel(std::string method, Grid grid, std::vector<GridNode> nodes);
+
+  [[nodiscard]] std::string method() const override { return method_; }
+  [[nodiscard]] Mat2 compliance(const Vec2& p) const noexcept override;
+  [[nodiscard]] Vec2 offset(const Vec2& p) const noexcept override;
+  [[nodiscard]] GridBounds bounds() const noexcept override { return bounds_; }
+  [[nodiscard]] nlohmann::json parameters() const override;
+
+  [[nodiscard]] const Grid& grid() const noexcept { return grid_; }
+  [[nodiscard]] const std::vector<GridNode>& nodes() const noexcept { return nodes_; }
+
+ private:
+  template <typename T>
+  T interpolate(const Vec2& p, T GridNode::*field) const noexcept;
+
+  std::string method_;
+  Grid grid_;
+  GridBounds bounds_;
+  std::vector<GridNode> nodes_;
+};
+
+//! The thesis's model: eqs. 4.8–4.11 per point, eq. 4.12 between points.
+std::unique_ptr<GridModel> make_bilinear_model(const std::vector<PointFit>& fits, const std::string& source);
+
+//! Reciprocity-respecting model: per point, C = [c11 c12; c12 c22] fitted jointly to both load
+//! directions (Maxwell–Betti), then projected onto the positive-definite cone (eigenvalues ≥ 1 nm/N);
+//! bilinear between points, which keeps C symmetric positive definite inside the grid.
+std::unique_ptr<GridModel> make_symmetric_model(const std::vector<PointSamples>& points, const std::string& source);
+
+//! The symmetric fit at one point (exposed for cross-validation and tests).
+GridNode fit_symmetric_node(const PointSamples& point, const std::string& source);
+
+}  // namespace stiffpath::compliance

@@ -1,0 +1,82 @@
+// The compliance model contract: predict(p, F) → Δ and the 2×2 compliance matrix at p (thesis §4.2).
+#pragma once
+
+#include <memory>
+#include <nlohmann/json_fwd.hpp>
+#include <string>
+
+#include "stiffpath/kinematics/types.hpp"
+
+namespace stiffpath::compliance {
+
+using kinematics::Mat2;
+using kinematics::Vec2;
+
+//! What a model does with a point outside the measured grid.
+enum class OutsidePolicy {
+  clamp,        //!< use the nearest point of the grid's rectangle (default); callers count such samples
+  extrapolate,  //!< extend the model's formula beyond the grid
+  error,        //!< refuse: callers must check inside() and stop
+};
+
+//! Whether the thesis's zero-force intercepts (n, p, u, w of eq. 4.8) are part of the prediction.
+enum class ZeroForce {
+  relative,    //!< Δ(p, F) − Δ(p, 0): a robot at rest is not moved (default for compensation)
+  thesis_raw,  //!< eqs. 4.7–4.8 as written, intercepts included
+};
+
+const char* to_string(OutsidePolicy policy) noexcept;
+const char* to_string(ZeroForce mode) noexcept;
+OutsidePolicy parse_outside_policy(const std::string& text);  //!< throws stiffpath::Error
+ZeroForce parse_zero_force(const std::string& text);          //!< throws stiffpath::Error
+
+//! The measured rectangle of a model, in m.
+struct GridBounds {
+  double x_min = 0.0, x_max = 0.0, y_min = 0.0, y_max = 0.0;
+  [[nodiscard]] bool contains(const Vec2& p) const noexcept {
+    return p.x() >= x_min && p.x() <= x_max && p.y() >= y_min && p.y() <= y_max;
+  }
+  [[nodiscard]] Vec2 clamp(const Vec2& p) const noexcept;
+};
+
+//! A compliance model of the platform point: Δ = C(p)·F (+ intercepts in thesis_raw mode).
+//! Every method is noexcept and allocation-free so that the real-time compensator can call it.
+class Model {
+ public:
+  virtual ~Model() = default;
+
+  //! Short method name ("bilinear", "symmetric", "physical", …).
+  [[nodiscard]] virtual std::string method() const = 0;
+  //! Compliance matrix ∂Δ/∂F at p (m/N), with the outside policy applied (error acts as clamp).
+  [[nodiscard]] virtual Mat2 compliance(const Vec2& p) const noexcept = 0;
+  //! Zero-force deflection at p (m); zero for models without intercepts.
+  [[nodiscard]] virtual Vec2 offset(const Vec2& p) const noexcept;
+  //! The rectangle where the model was measured.
+  [[nodiscard]] virtual GridBounds bounds() const noexcept = 0;
+  //! The model's parameters and fit statistics as JSON (for model files); see model_file.hpp.
+  [[nodiscard]] virtual nlohmann::json parameters() const = 0;
+
+  //! Predicted deflection Δ (m) at p (m) under F (N), eqs. 4.6–4.7.
+  [[nodiscard]] Vec2 predict(const Vec2& p, const Vec2& F) const noexcept {
+    const Vec2 d = compliance(p) * F;
+    return zero_force_ == ZeroForce::thesis_raw ? Vec2(d + offset(p)) : d;
+  }
+  [[nodiscard]] bool inside(const Vec2& p) const noexcept { return bounds().contains(p); }
+
+  [[nodiscard]] OutsidePolicy outside_policy() const noexcept { return outside_; }
+  void set_outside_policy(OutsidePolicy policy) noexcept { outside_ = policy; }
+  [[nodiscard]] ZeroForce zero_force() const noexcept { return zero_force_; }
+  void set_zero_force(ZeroForce mode) noexcept { zero_force_ = mode; }
+
+ protected:
+  //! p after the outside policy: clamped to the bounds unless the policy is extrapolate.
+  [[nodiscard]] Vec2 policy_point(const Vec2& p) const noexcept {
+    return outside_ == OutsidePolicy::extrapolate ? p : bounds().clamp(p);
+  }
+
+ private:
+  OutsidePolicy outside_ = OutsidePolicy::clamp;
+  ZeroForce zero_force_ = ZeroForce::relative;
+};
+
+}  // namespace stiffpath::compliance

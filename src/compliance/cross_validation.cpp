@@ -1,0 +1,152 @@
+// Leave-one-out cross-validation: grid models by neighbour interpolation, physical models by refitting.
+#include "stiffpath/compliance/cross_validation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+#include "stiffpath/compliance/grid.hpp"
+#include "stiffpath/compliance/grid_model.hpp"
+#include "stiffpath/compliance/physical_model.hpp"
+
+namespace stiffpath::compliance {
+
+namespace {
+struct Prediction {
+  Mat2 compliance;
+  Vec2 offset;
+};
+using Predictor = std::function<std::optional<Prediction>(std::size_t held_out)>;
+
+// The highest-load sample of each load direction (x-loaded, y-loaded) of a point.
+std::vector<const PointSample*> reference_samples(const PointSamples& point) {
+  const PointSample* best[2] = {nullptr, nullptr};
+  for (const auto& s : point.samples) {
+    const int axis = s.force_N.y() == 0.0 ? 0 : s.force_N.x() == 0.0 ? 1 : -1;
+    if (axis < 0) continue;
+    if (!best[axis] || s.force_N.norm() > best[axis]->force_N.norm()) best[axis] = &s;
+  }
+  std::vector<const PointSample*> out;
+  for (auto* b : best) {
+    if (b) out.push_back(b);
+  }
+  return out;
+}
+
+CvMethod evaluate(const std::string& name, const std::string& description, const std::vector<PointSamples>& points,
+                  const Grid& grid, const std::vector<int>& node_of, ZeroForce zero_force, const Predictor& predict) {
+  CvMethod m{name, description, {}, 0, 0.0, 0.0, 0.0};
+  double sum = 0.0, interior_sum = 0.0;
+  int interior_count = 0;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    CvPoint r;
+    r.id = points[k].id;
+    r.position = points[k].position;
+    const int i = node_of[k] / static_cast<int>(grid.ys.size()), j = node_of[k] % static_cast<int>(grid.ys.size());
+    r.interior = i > 0 && i + 1 < static_cast<int>(grid.xs.size()) && j > 0 && j + 1 < static_cast<int>(grid.ys.size());
+    if (const auto pred = predict(k)) {
+      double abs_sum = 0.0, vec_sum = 0.0;
+      int components = 0, loads = 0;
+      for (const PointSample* s : reference_samples(points[k])) {
+        Vec2 d = pred->compliance * s->force_N;
+        if (zero_force == ZeroForce::thesis_raw) d += pred->offset;
+        Vec2 err = Vec2::Zero();
+        if (s->dx_m) {
+          err.x() = d.x() - *s->dx_m;
+          abs_sum += std::abs(err.x());
+          ++components;
+        }
+        if (s->dy_m) {
+          err.y() = d.y() - *s->dy_m;
+          abs_sum += std::abs(err.y());
+          ++components;
+        }
+        vec_sum += err.norm();
+        ++loads;
+      }
+      if (components > 0) {
+        r.predicted = true;
+        r.mean_abs_error_um = abs_sum / components * 1e6;
+        r.mean_vector_error_um = vec_sum / loads * 1e6;
+        sum += r.mean_abs_error_um;
+        m.max_um = std::max(m.max_um, r.mean_abs_error_um);
+        ++m.predicted;
+        if (r.interior) {
+          interior_sum += r.mean_abs_error_um;
+          ++interior_count;
+        }
+      }
+    }
+    m.points.push_back(r);
+  }
+  m.mean_um = m.predicted > 0 ? sum / m.predicted : 0.0;
+  m.interior_mean_um = interior_count > 0 ? interior_sum / interior_count : 0.0;
+  return m;
+}
+
+// Interpolates a held-out node linearly from its neighbours along x, else along y (nullopt at corners).
+std::optional<Prediction> from_neighbours(const Grid& grid, const std::vector<Prediction>& by_node, int node) {
+  const int ny = static_cast<int>(grid.ys.size());
+  const int i = node / ny, j = node % ny;
+  const auto blend = [&](int a, int b, double t) {
+    const Prediction& pa = by_node[static_cast<std::size_t>(a)];
+    const Prediction& pb = by_node[static_cast<std::size_t>(b)];
+    return Prediction{(1 - t) * pa.compliance + t * pb.compliance, (1 - t) * pa.offset + t * pb.offset};
+  };
+  if (i > 0 && i + 1 < static_cast<int>(grid.xs.size())) {
+    const auto ui = static_cast<std::size_t>(i);
+    const double t = (grid.xs[ui] - grid.xs[ui - 1]) / (grid.xs[ui + 1] - grid.xs[ui - 1]);
+    return blend(grid.node(i - 1, j), grid.node(i + 1, j), t);
+  }
+  if (j > 0 && j + 1 < ny) {
+    const auto uj = static_cast<std::size_t>(j);
+    const double t = (grid.ys[uj] - grid.ys[uj - 1]) / (grid.ys[uj + 1] - grid.ys[uj - 1]);
+    return blend(grid.node(i, j - 1), grid.node(i, j + 1), t);
+  }
+  return std::nullopt;
+}
+}  // namespace
+
+CvReport cross_validate(const std::vector<PointSamples>& points, double link_length_m, const std::string& source,
+                        ZeroForce zero_force) {
+  std::vector<Vec2> positions;
+  for (const auto& p : points) positions.push_back(p.position);
+  std::vector<int> node_of;
+  const Grid grid = Grid::from_positions(positions, node_of, source);
+
+  CvReport report;
+  report.source = source;
+  report.zero_force = zero_force;
+
+  std::vector<Prediction> bilinear(points.size()), symmetric(points.size());
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const PointFit f = fit_point(points[k], source);
+    bilinear[static_cast<std::size_t>(node_of[k])] = {f.compliance(), f.offset()};
+    const GridNode n = fit_symmetric_node(points[k], source);
+    symmetric[static_cast<std::size_t>(node_of[k])] = {n.compliance, n.offset};
+  }
+  report.methods.push_back(evaluate("bilinear", "thesis eqs. 4.8-4.12: per-point fits, bilinear between points",
+                                    points, grid, node_of, zero_force, [&](std::size_t k) {
+                                      return from_neighbours(grid, bilinear, node_of[k]);
+                                    }));
+  report.methods.push_back(evaluate("symmetric", "per-point fit with C = C^T > 0 (reciprocity), bilinear between",
+                                    points, grid, node_of, zero_force, [&](std::size_t k) {
+                                      return from_neighbours(grid, symmetric, node_of[k]);
+                                    }));
+  for (int order = 0; order <= 2; ++order) {
+    const std::string name = order == 1 ? "physical" : "physical-" + std::to_string(order);
+    const std::string description = "five-bar statics C = U^-T D(p) U^-1, D polynomial of order " + std::to_string(order);
+    report.methods.push_back(evaluate(name, description, points, grid, node_of, zero_force, [&](std::size_t k) {
+      std::vector<PointSamples> rest;
+      for (std::size_t m = 0; m < points.size(); ++m) {
+        if (m != k) rest.push_back(points[m]);
+      }
+      const auto model = fit_physical_model(rest, link_length_m, order, source);
+      model->set_outside_policy(OutsidePolicy::extrapolate);
+      return std::optional<Prediction>(Prediction{model->compliance(points[k].position), Vec2::Zero()});
+    }));
+  }
+  return report;
+}
+
+}  // namespace stiffpath::compliance

@@ -1,0 +1,79 @@
+// GridModel: bilinear interpolation of per-node compliance (eq. 4.12) and the thesis's bilinear model.
+#include "stiffpath/compliance/grid_model.hpp"
+
+#include <fmt/format.h>
+
+#include "stiffpath/core/error.hpp"
+
+namespace stiffpath::compliance {
+
+GridModel::GridModel(std::string method, Grid grid, std::vector<GridNode> nodes)
+    : method_(std::move(method)), grid_(std::move(grid)), bounds_(grid_.bounds()), nodes_(std::move(nodes)) {
+  if (nodes_.size() != grid_.xs.size() * grid_.ys.size()) {
+    throw Error(fmt::format("grid model: {} nodes for a {} x {} grid", nodes_.size(), grid_.xs.size(), grid_.ys.size()));
+  }
+}
+
+template <typename T>
+T GridModel::interpolate(const Vec2& p, T GridNode::*field) const noexcept {
+  int i = 0, j = 0;
+  double tx = 0.0, ty = 0.0;
+  grid_.locate(policy_point(p), i, j, tx, ty);
+  const auto at = [&](int di, int dj) -> const T& {
+    return nodes_[static_cast<std::size_t>(grid_.node(i + di, j + dj))].*field;
+  };
+  // Eq. 4.12: [x2 − x, x − x1] · [Δ11 Δ12; Δ21 Δ22] · [y2 − y; y − y1] / ((x2 − x1)(y2 − y1)).
+  return T((1 - tx) * (1 - ty) * at(0, 0) + (1 - tx) * ty * at(0, 1) + tx * (1 - ty) * at(1, 0) + tx * ty * at(1, 1));
+}
+
+Mat2 GridModel::compliance(const Vec2& p) const noexcept { return interpolate(p, &GridNode::compliance); }
+
+Vec2 GridModel::offset(const Vec2& p) const noexcept { return interpolate(p, &GridNode::offset); }
+
+nlohmann::json GridModel::parameters() const {
+  nlohmann::json x_mm = nlohmann::json::array(), y_mm = nlohmann::json::array(), nodes = nlohmann::json::array();
+  for (double x : grid_.xs) x_mm.push_back(x * 1e3);
+  for (double y : grid_.ys) y_mm.push_back(y * 1e3);
+  for (std::size_t i = 0; i < grid_.xs.size(); ++i) {
+    for (std::size_t j = 0; j < grid_.ys.size(); ++j) {
+      const GridNode& n = nodes_[i * grid_.ys.size() + j];
+      const Mat2 c = n.compliance * 1e6;
+      nodes.push_back({{"point", n.id},
+                       {"x_mm", grid_.xs[i] * 1e3},
+                       {"y_mm", grid_.ys[j] * 1e3},
+                       {"C_um_per_N", {{c(0, 0), c(0, 1)}, {c(1, 0), c(1, 1)}}},
+                       {"offset_um", {n.offset.x() * 1e6, n.offset.y() * 1e6}},
+                       {"stats", n.stats}});
+    }
+  }
+  return {{"grid", {{"x_mm", x_mm}, {"y_mm", y_mm}}}, {"nodes", nodes}};
+}
+
+namespace {
+nlohmann::json line_stats(const LineFit& f) {
+  return {{"slope_um_per_N", f.slope * 1e6},
+          {"intercept_um", f.intercept * 1e6},
+          {"slope_stderr_um_per_N", f.slope_stderr * 1e6},
+          {"r_squared", f.r_squared},
+          {"rms_residual_um", f.rms_residual * 1e6},
+          {"n", f.n}};
+}
+}  // namespace
+
+std::unique_ptr<GridModel> make_bilinear_model(const std::vector<PointFit>& fits, const std::string& source) {
+  std::vector<Vec2> positions;
+  for (const auto& f : fits) positions.push_back(f.position);
+  std::vector<int> node_of;
+  Grid grid = Grid::from_positions(positions, node_of, source);
+  std::vector<GridNode> nodes(fits.size());
+  for (std::size_t k = 0; k < fits.size(); ++k) {
+    const PointFit& f = fits[k];
+    nodes[static_cast<std::size_t>(node_of[k])] = {
+        f.id, f.compliance(), f.offset(),
+        {{"dx_fx", line_stats(f.dx_fx)}, {"dx_fy", line_stats(f.dx_fy)},
+         {"dy_fx", line_stats(f.dy_fx)}, {"dy_fy", line_stats(f.dy_fy)}}};
+  }
+  return std::make_unique<GridModel>("bilinear", std::move(grid), std::move(nodes));
+}
+
+}  // namespace stiffpath::compliance

@@ -1,0 +1,145 @@
+// PhysicalModel: C(p) = U⁻ᵀ D(p) U⁻¹ from the five-bar's statics, D fitted by linear least squares.
+#include "stiffpath/compliance/physical_model.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "stiffpath/core/error.hpp"
+
+namespace stiffpath::compliance {
+
+PhysicalModel::PhysicalModel(double link_length_m, GridBounds bounds, int order,
+                             std::vector<std::array<double, 3>> coefficients, nlohmann::json stats)
+    : l_(link_length_m), bounds_(bounds), order_(order), coefficients_(std::move(coefficients)),
+      stats_(std::move(stats)) {
+  std::array<double, kMaxTerms> b{};
+  if (order_ < 0 || order_ > 2) throw Error(fmt::format("physical model: order must be 0, 1 or 2, got {}", order_));
+  const int terms = basis(bounds_, order_, Vec2::Zero(), b);
+  if (static_cast<int>(coefficients_.size()) != terms) {
+    throw Error(fmt::format("physical model: order {} needs {} coefficient triples, got {}", order_, terms,
+                            coefficients_.size()));
+  }
+  if (!(l_ > 0.0) || !(bounds_.x_max > bounds_.x_min) || !(bounds_.y_max > bounds_.y_min)) {
+    throw Error("physical model: link length and grid bounds must be positive and non-empty");
+  }
+}
+
+int PhysicalModel::basis(const GridBounds& g, int order, const Vec2& p, std::array<double, kMaxTerms>& out) noexcept {
+  const double X = (2.0 * p.x() - g.x_min - g.x_max) / (g.x_max - g.x_min);
+  const double Y = (2.0 * p.y() - g.y_min - g.y_max) / (g.y_max - g.y_min);
+  out = {1.0, X, Y, X * X, X * Y, Y * Y};
+  return order == 0 ? 1 : order == 1 ? 3 : 6;
+}
+
+Mat2 PhysicalModel::link_force_map(double l, const Vec2& p) noexcept {
+  // Eq. 2.2 for θ1, θ2; r is kept just inside (0, 2l) so that the map stays finite.
+  const double r = std::clamp(p.norm(), 1e-9, 2.0 * l * (1.0 - 1e-12));
+  const double phi = std::atan2(p.y(), p.x());
+  const double eta = std::acos(r / (2.0 * l));
+  const double t1 = phi + eta, t2 = phi - eta;
+  const double c1 = std::cos(t1), s1 = std::sin(t1), c2 = std::cos(t2), s2 = std::sin(t2);
+  // U = [w2 w1] = [c2 c1; s2 s1], det U = c2·s1 − c1·s2 = sin(θ1 − θ2) = sin 2η > 0.
+  const double det = c2 * s1 - c1 * s2;
+  Mat2 inv;
+  inv << s1 / det, -c1 / det, -s2 / det, c2 / det;
+  return inv;
+}
+
+Mat2 PhysicalModel::link_compliance(const Vec2& p) const noexcept {
+  std::array<double, kMaxTerms> b{};
+  const int terms = basis(bounds_, order_, policy_point(p), b);
+  double d11 = 0.0, d12 = 0.0, d22 = 0.0;
+  for (int k = 0; k < terms; ++k) {
+    const auto& c = coefficients_[static_cast<std::size_t>(k)];
+    d11 += c[0] * b[static_cast<std::size_t>(k)];
+    d12 += c[1] * b[static_cast<std::size_t>(k)];
+    d22 += c[2] * b[static_cast<std::size_t>(k)];
+  }
+  Mat2 d;
+  d << d11, d12, d12, d22;
+  return d;
+}
+
+Mat2 PhysicalModel::compliance(const Vec2& p) const noexcept {
+  const Mat2 r = link_force_map(l_, p);
+  return r.transpose() * link_compliance(p) * r;
+}
+
+nlohmann::json PhysicalModel::parameters() const {
+  nlohmann::json d = nlohmann::json::array();
+  for (const auto& c : coefficients_) d.push_back({c[0] * 1e6, c[1] * 1e6, c[2] * 1e6});
+  return {{"link_length_mm", l_ * 1e3},
+          {"order", order_},
+          {"bounds_mm", {bounds_.x_min * 1e3, bounds_.x_max * 1e3, bounds_.y_min * 1e3, bounds_.y_max * 1e3}},
+          {"D_um_per_N", d},
+          {"stats", stats_}};
+}
+
+std::unique_ptr<PhysicalModel> fit_physical_model(const std::vector<PointSamples>& points, double link_length_m,
+                                                  int order, const std::string& source) {
+  GridBounds g{1e300, -1e300, 1e300, -1e300};
+  for (const auto& p : points) {
+    g.x_min = std::min(g.x_min, p.position.x());
+    g.x_max = std::max(g.x_max, p.position.x());
+    g.y_min = std::min(g.y_min, p.position.y());
+    g.y_max = std::max(g.y_max, p.position.y());
+  }
+  if (points.empty() || !(g.x_max > g.x_min) || !(g.y_max > g.y_min)) {
+    throw Error(SourceLocation{source}, "the physical model needs points spread over x and y");
+  }
+  std::array<double, PhysicalModel::kMaxTerms> b{};
+  const int terms = PhysicalModel::basis(g, order, Vec2::Zero(), b);
+  const int unknowns = 3 * terms;
+  std::vector<double> a_rows, rhs;
+  const Mat2 e[3] = {(Mat2() << 1, 0, 0, 0).finished(), (Mat2() << 0, 1, 1, 0).finished(),
+                     (Mat2() << 0, 0, 0, 1).finished()};
+  for (const auto& point : points) {
+    const Mat2 r = PhysicalModel::link_force_map(link_length_m, point.position);
+    PhysicalModel::basis(g, order, point.position, b);
+    for (const auto& s : point.samples) {
+      const std::optional<double> measured[2] = {s.dx_m, s.dy_m};
+      for (int comp = 0; comp < 2; ++comp) {
+        if (!measured[comp]) continue;
+        for (int k = 0; k < terms; ++k) {
+          for (int m = 0; m < 3; ++m) {
+            // Unknowns in µm/N so that the columns are O(1).
+            a_rows.push_back((r.transpose() * e[m] * r * s.force_N)(comp) * b[static_cast<std::size_t>(k)] * 1e-6);
+          }
+        }
+        rhs.push_back(*measured[comp]);
+      }
+    }
+  }
+  const auto n = static_cast<Eigen::Index>(rhs.size());
+  if (n < unknowns) {
+    throw Error(SourceLocation{source},
+                fmt::format("the physical model of order {} has {} unknowns but only {} measurements", order, unknowns, n));
+  }
+  const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> A(a_rows.data(), n,
+                                                                                                  unknowns);
+  const Eigen::Map<const Eigen::VectorXd> y(rhs.data(), n);
+  const Eigen::VectorXd sol = A.colPivHouseholderQr().solve(y);
+  const double rms = std::sqrt((A * sol - y).squaredNorm() / static_cast<double>(n));
+
+  std::vector<std::array<double, 3>> coefficients;
+  for (int k = 0; k < terms; ++k) coefficients.push_back({sol(3 * k) * 1e-6, sol(3 * k + 1) * 1e-6, sol(3 * k + 2) * 1e-6});
+  auto model = std::make_unique<PhysicalModel>(link_length_m, g, order, coefficients, nlohmann::json::object());
+  // Positive definiteness of D over the grid rectangle (51 × 51 samples).
+  double min_eig = 1e300;
+  for (int i = 0; i <= 50; ++i) {
+    for (int j = 0; j <= 50; ++j) {
+      const Vec2 p{g.x_min + (g.x_max - g.x_min) * i / 50.0, g.y_min + (g.y_max - g.y_min) * j / 50.0};
+      min_eig = std::min(min_eig, Eigen::SelfAdjointEigenSolver<Mat2>(model->link_compliance(p)).eigenvalues()(0));
+    }
+  }
+  nlohmann::json stats = {{"rms_residual_um", rms * 1e6},
+                          {"equations", n},
+                          {"unknowns", unknowns},
+                          {"min_D_eigenvalue_um_per_N", min_eig * 1e6},
+                          {"positive_definite_on_grid", min_eig > 0.0}};
+  return std::make_unique<PhysicalModel>(link_length_m, g, order, std::move(coefficients), std::move(stats));
+}
+
+}  // namespace stiffpath::compliance
