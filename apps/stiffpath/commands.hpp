@@ -10,9 +10,16 @@ namespace stiffpath::cli {
 void add_kin_command(CLI::App& app);
 void add_mechanism_command(CLI::App& app);
 void add_mobility_command(CLI::App& app);
+void add_fit_command(CLI::App& app);
+void add_predict_command(CLI::App& app);
+void add_cv_command(CLI::App& app);
+void add_plot_command(CLI::App& app);
 
 //! Prints a JSON document on stdout (two-space indent, newline).
 void print_json(const nlohmann::json& document);
+//! "oc", "OC", "oc-gu", a mechanism file … → the build name used in data tables ("OC" / "SC").
+std::string resolve_build(const std::string& mechanism);
+
 //! Rounds for display in JSON so that outputs are stable (12 significant digits).
 double tidy(double value);
 

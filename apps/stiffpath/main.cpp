@@ -5,6 +5,7 @@
 
 #include "commands.hpp"
 #include "stiffpath/core/error.hpp"
+#include "stiffpath/kinematics/mechanism_spec.hpp"
 
 namespace stiffpath::cli {
 
@@ -17,6 +18,12 @@ double tidy(double value) {
   return std::strtod(buffer, nullptr);
 }
 
+std::string resolve_build(const std::string& mechanism) {
+  if (mechanism == "oc" || mechanism == "OC") return "OC";
+  if (mechanism == "sc" || mechanism == "SC") return "SC";
+  return kinematics::load_mechanism(mechanism).build;
+}
+
 }  // namespace stiffpath::cli
 
 int main(int argc, char** argv) {
@@ -26,6 +33,10 @@ int main(int argc, char** argv) {
   stiffpath::cli::add_kin_command(app);
   stiffpath::cli::add_mechanism_command(app);
   stiffpath::cli::add_mobility_command(app);
+  stiffpath::cli::add_fit_command(app);
+  stiffpath::cli::add_predict_command(app);
+  stiffpath::cli::add_cv_command(app);
+  stiffpath::cli::add_plot_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -63,6 +63,7 @@ CvMethod evaluate(const std::string& name, const std::string& description, const
         }
         vec_sum += err.norm();
         ++loads;
+        r.loads.push_back({s->force_N, s->dx_m, s->dy_m, d});
       }
       if (components > 0) {
         r.predicted = true;

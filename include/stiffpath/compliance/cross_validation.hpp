@@ -1,6 +1,7 @@
 // Leave-one-out cross-validation of every compliance model over the measurement grid.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,13 @@ namespace stiffpath::compliance {
 //! step of each load direction (250 N nominal in the thesis); the error per point is the mean of
 //! |Δx_pred − Δx_meas| and |Δy_pred − Δy_meas| over both load directions (µm), which is the
 //! measure behind the "about 90 µm" for the thesis's bilinear interpolation on OC.
+//! One reference load of a held-out point: what was measured and what the method predicted.
+struct CvLoad {
+  Vec2 force_N;
+  std::optional<double> dx_m, dy_m;  //!< measured (missing cells stay empty)
+  Vec2 predicted_m;
+};
+
 struct CvPoint {
   std::string id;
   Vec2 position;
@@ -20,6 +28,7 @@ struct CvPoint {
   bool interior = false;           //!< not on the grid's boundary (x2y2, x2y3, x2y4 on the thesis grid)
   double mean_abs_error_um = 0.0;  //!< mean absolute component error
   double mean_vector_error_um = 0.0;  //!< mean |Δ_pred − Δ_meas| over the load directions
+  std::vector<CvLoad> loads;
 };
 
 struct CvMethod {

@@ -1,0 +1,89 @@
+// `stiffpath predict`: the deflection a compliance model predicts at a point under a force.
+#include <fmt/format.h>
+#include <memory>
+
+#include "commands.hpp"
+#include "stiffpath/compliance/model_factory.hpp"
+#include "stiffpath/compliance/point_fit.hpp"
+#include "stiffpath/compliance/tool_point.hpp"
+#include "stiffpath/core/error.hpp"
+#include "stiffpath/measurement/displacement_table.hpp"
+
+namespace stiffpath::cli {
+
+namespace {
+struct PredictOptions {
+  std::string model = "thesis-oc";
+  double x_mm = 0.0, y_mm = 0.0, fx_n = 0.0, fy_n = 0.0;
+  double tool_below_G_mm = 0.0;
+  bool tool = false;
+  std::string angles = "thesis";
+  bool json = false;
+};
+
+void run(const PredictOptions& o) {
+  const auto loaded = compliance::load_model(o.model);
+  const compliance::Model& model = *loaded.model;
+  const compliance::Vec2 p{o.x_mm * 1e-3, o.y_mm * 1e-3}, F{o.fx_n, o.fy_n};
+  if (!model.inside(p) && model.outside_policy() == compliance::OutsidePolicy::error) {
+    throw Error(fmt::format("point ({}, {}) mm is outside the model's grid and its policy is 'error'", o.x_mm, o.y_mm));
+  }
+  const compliance::Vec2 d = model.predict(p, F);
+  const compliance::Mat2 c = model.compliance(p) * 1e6;
+  nlohmann::json out = {{"model", o.model},
+                        {"method", model.method()},
+                        {"x_mm", o.x_mm},
+                        {"y_mm", o.y_mm},
+                        {"fx_n", o.fx_n},
+                        {"fy_n", o.fy_n},
+                        {"dx_um", tidy(d.x() * 1e6)},
+                        {"dy_um", tidy(d.y() * 1e6)},
+                        {"inside_grid", model.inside(p)},
+                        {"C_um_per_N", {{tidy(c(0, 0)), tidy(c(0, 1))}, {tidy(c(1, 0)), tidy(c(1, 1))}}}};
+  if (o.tool) {
+    const auto table = measurement::load_displacement_table(o.angles).filter(loaded.provenance.mechanism);
+    std::shared_ptr<const compliance::GridModel> angular =
+        compliance::make_angular_model(compliance::fit_points(table, loaded.provenance.convention), o.angles);
+    std::shared_ptr<const compliance::Model> at_G = compliance::load_model(o.model).model;
+    const compliance::ToolPointModel tool(at_G, angular, o.tool_below_G_mm * 1e-3);
+    const compliance::Vec2 dt = tool.predict(p, F);
+    out["tool_below_G_mm"] = o.tool_below_G_mm;
+    out["tool_dx_um"] = tidy(dt.x() * 1e6);
+    out["tool_dy_um"] = tidy(dt.y() * 1e6);
+    out["tool_change_um"] = tidy((dt - d).norm() * 1e6);
+  }
+  if (o.json) {
+    print_json(out);
+    return;
+  }
+  fmt::print("{} ({}) at ({}, {}) mm under F = ({}, {}) N{}:\n", o.model, model.method(), o.x_mm, o.y_mm, o.fx_n, o.fy_n,
+             model.inside(p) ? "" : fmt::format(" [outside the grid: {}]", compliance::to_string(model.outside_policy())));
+  fmt::print("  dx = {:.2f} um, dy = {:.2f} um at G\n", d.x() * 1e6, d.y() * 1e6);
+  fmt::print("  C = [{:.4f} {:.4f}; {:.4f} {:.4f}] um/N\n", c(0, 0), c(0, 1), c(1, 0), c(1, 1));
+  if (o.tool) {
+    fmt::print("  tool point {} mm below G: dx = {:.2f} um, dy = {:.2f} um (changes the prediction by {:.2f} um)\n",
+               o.tool_below_G_mm, out["tool_dx_um"].get<double>(), out["tool_dy_um"].get<double>(),
+               out["tool_change_um"].get<double>());
+  }
+}
+}  // namespace
+
+void add_predict_command(CLI::App& app) {
+  auto o = std::make_shared<PredictOptions>();
+  auto* cmd = app.add_subcommand("predict", "Predict the deflection at a point under a force (eqs. 4.6-4.7)");
+  cmd->add_option("--model", o->model, "Model file, or built-in thesis-oc / thesis-sc[-<method>]")->capture_default_str();
+  cmd->add_option("--x-mm", o->x_mm, "Platform x (mm)")->required();
+  cmd->add_option("--y-mm", o->y_mm, "Platform y (mm)")->required();
+  cmd->add_option("--fx-n", o->fx_n, "Force along x (N)")->required();
+  cmd->add_option("--fy-n", o->fy_n, "Force along y (N)")->required();
+  auto* tool = cmd->add_option("--tool-below-g-mm", o->tool_below_G_mm,
+                               "Also predict at a tool point this far below G, using the angular deflections");
+  cmd->add_option("--angles", o->angles, "Table with rx_deg, ry_deg for --tool-below-g-mm")->capture_default_str();
+  cmd->add_flag("--json", o->json, "Print JSON (keys dx_um, dy_um, ...)");
+  cmd->callback([o, tool] {
+    o->tool = tool->count() > 0;
+    run(*o);
+  });
+}
+
+}  // namespace stiffpath::cli
