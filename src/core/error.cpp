@@ -3,19 +3,22 @@
 
 namespace stiffpath {
 
+// Built with append() rather than operator+ chains, which trip GCC 12's false -Wrestrict at -O3.
 std::string SourceLocation::str() const {
   std::string out = file;
   if (line > 0) {
-    out += ":" + std::to_string(line);
-    if (column > 0) out += ":" + std::to_string(column);
+    out.append(":").append(std::to_string(line));
+    if (column > 0) out.append(":").append(std::to_string(column));
   }
   return out;
 }
 
 namespace {
 std::string compose(const SourceLocation& where, const std::string& message) {
-  const std::string prefix = where.str();
-  return prefix.empty() ? message : prefix + ": " + message;
+  std::string out = where.str();
+  if (out.empty()) return message;
+  out.append(": ").append(message);
+  return out;
 }
 }  // namespace
 

@@ -38,7 +38,7 @@ double plot_compliance_map(const std::filesystem::path& dir, const std::string& 
   const double scale = largest > 0 ? 8.0 / largest : 1.0;
   Figure fig{name,
              fmt::format("set title {}\nset xlabel 'x (mm)'\nset ylabel 'y (mm)'\nset size ratio -1\n"
-                         "set cblabel 'largest compliance eigenvalue (um/N)'\nset view map\nset palette rgb 33,13,10\n"
+                         "set key below\nset cblabel 'largest compliance eigenvalue (um/N)'\nset view map\nset palette rgb 33,13,10\n"
                          "set xrange [{}:{}]\nset yrange [{}:{}]\n"
                          "splot {} using 1:2:3 with pm3d notitle, \\\n"
                          "  {} using ($1-$3*{s}):($2-$4*{s}):(0):($3*2*{s}):($4*2*{s}):(0) with vectors nohead lw 2 "

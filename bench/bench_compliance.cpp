@@ -1,0 +1,60 @@
+// Benchmarks of compliance prediction: predict(p, F) per model (targets: bilinear ≤ 20 ns, physical ≤ 100 ns).
+#include <benchmark/benchmark.h>
+
+#include <random>
+#include <vector>
+
+#include "stiffpath/compliance/model_factory.hpp"
+#include "stiffpath/compliance/point_fit.hpp"
+#include "stiffpath/compliance/cross_validation.hpp"
+#include "stiffpath/measurement/displacement_table.hpp"
+
+namespace {
+using stiffpath::compliance::Vec2;
+
+struct Inputs {
+  std::vector<Vec2> p, f;
+};
+
+const Inputs& inputs() {
+  static const Inputs in = [] {
+    Inputs r;
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> ux(0.172132, 0.272132), uy(-0.075, 0.075), uf(-180.0, 180.0);
+    for (int i = 0; i < 1024; ++i) {
+      r.p.emplace_back(ux(rng), uy(rng));
+      r.f.emplace_back(uf(rng), uf(rng));
+    }
+    return r;
+  }();
+  return in;
+}
+
+void BM_Predict(benchmark::State& state, const char* model_name) {
+  const auto loaded = stiffpath::compliance::load_model(model_name);
+  const auto& model = *loaded.model;
+  const auto& in = inputs();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const std::size_t k = i++ & 1023;
+    benchmark::DoNotOptimize(model.predict(in.p[k], in.f[k]));
+  }
+}
+BENCHMARK_CAPTURE(BM_Predict, bilinear, "thesis-oc");
+BENCHMARK_CAPTURE(BM_Predict, symmetric, "thesis-oc-symmetric");
+BENCHMARK_CAPTURE(BM_Predict, physical, "thesis-oc-physical");
+BENCHMARK_CAPTURE(BM_Predict, physical_order2, "thesis-oc-physical-2");
+
+void BM_FitPhysical(benchmark::State& state) {
+  const auto table = stiffpath::measurement::load_displacement_table("thesis");
+  for (auto _ : state) benchmark::DoNotOptimize(stiffpath::compliance::fit_model(table, "OC", "physical"));
+}
+BENCHMARK(BM_FitPhysical)->Unit(benchmark::kMillisecond);
+
+void BM_CrossValidation(benchmark::State& state) {
+  const auto table = stiffpath::measurement::load_displacement_table("thesis").filter("OC");
+  const auto points = stiffpath::compliance::group_by_point(table, stiffpath::compliance::ForceConvention::measured);
+  for (auto _ : state) benchmark::DoNotOptimize(stiffpath::compliance::cross_validate(points, 0.150, "thesis"));
+}
+BENCHMARK(BM_CrossValidation)->Unit(benchmark::kMillisecond);
+}  // namespace
