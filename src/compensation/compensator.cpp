@@ -1,0 +1,100 @@
+// Compensator::step: D'Alembert force, predicted deflection, corrected target, inverse kinematics, checks.
+#include "stiffpath/compensation/compensator.hpp"
+
+#include <Eigen/LU>
+#include <cmath>
+
+#include "stiffpath/core/error.hpp"
+
+namespace stiffpath::compensation {
+
+const char* describe(Status status) noexcept {
+  switch (status) {
+    case Status::ok: return "ok";
+    case Status::not_finite: return "input sample is not finite";
+    case Status::outside_grid: return "point outside the compliance model's grid (policy 'error')";
+    case Status::unreachable: return "corrected target is not reachable with the mechanism's singularity margin";
+    case Status::joint_position: return "joint position limit exceeded";
+    case Status::joint_velocity: return "joint velocity limit exceeded";
+    case Status::joint_acceleration: return "joint acceleration limit exceeded";
+  }
+  return "unknown";
+}
+
+namespace {
+constexpr double kDerivativeStep_m = 1e-4;  // the model's change along the path is taken over ±0.1 mm
+constexpr double kMaxTimeStep_s = 1e-3;     // … or ±1 ms of the local motion when moving slowly
+
+bool finite(const Vec2& v) noexcept { return std::isfinite(v.x()) && std::isfinite(v.y()); }
+}  // namespace
+
+Compensator::Compensator(const kinematics::MechanismSpec& mechanism, std::shared_ptr<const compliance::Model> model,
+                         CompensatorOptions options)
+    : spec_(mechanism), robot_(mechanism.five_bar()), model_(std::move(model)), options_(options) {
+  if (!model_) throw Error("compensator needs a compliance model");
+  if (!std::isfinite(options_.gain) || options_.gain < 0.0) throw Error("compensation gain must be finite and >= 0");
+  effective_gain_ = options_.enabled ? options_.gain : 0.0;
+}
+
+JointCommand Compensator::step(const TaskSample& s) const noexcept {
+  JointCommand c;
+  c.t_s = s.t_s;
+  c.target_m = s.position_m;
+  c.laser_on = s.laser_on;
+  c.line = s.line;
+  if (!finite(s.position_m) || !finite(s.velocity_m_s) || !finite(s.acceleration_m_s2) || !finite(s.jerk_m_s3) ||
+      !finite(s.snap_m_s4)) {
+    c.status = Status::not_finite;
+    c.target_m = Vec2::Zero();
+    return c;
+  }
+  const double m = spec_.moving_mass_kg;
+  const double k = effective_gain_;
+  c.force_N = -m * s.acceleration_m_s2;
+  c.outside_grid = !model_->inside(s.position_m);
+  if (c.outside_grid && model_->outside_policy() == compliance::OutsidePolicy::error && k != 0.0) {
+    c.status = Status::outside_grid;
+    return c;
+  }
+  c.deflection_m = model_->predict(s.position_m, c.force_N);
+  c.command_m = s.position_m - k * c.deflection_m;
+
+  Vec2 pd_cmd = s.velocity_m_s, pdd_cmd = s.acceleration_m_s2;
+  if (k != 0.0) {
+    // Δ = −m·C(p(t))·a(t): dΔ/dt = −m·(C·j + Ċ·a), d²Δ/dt² = −m·(C·s + 2·Ċ·j + C̈·a). Ċ and C̈ come
+    // from C at p(t ± h) = p ± v·h + a·h²/2, with h such that the points lie ~0.1 mm apart.
+    const Mat2 C = model_->compliance(s.position_m);
+    const double speed = s.velocity_m_s.norm();
+    const double h = speed * kMaxTimeStep_s > kDerivativeStep_m ? kDerivativeStep_m / speed : kMaxTimeStep_s;
+    const Vec2 drift = 0.5 * h * h * s.acceleration_m_s2;
+    const Mat2 C_after = model_->compliance(s.position_m + h * s.velocity_m_s + drift);
+    const Mat2 C_before = model_->compliance(s.position_m - h * s.velocity_m_s + drift);
+    const Mat2 C_dot = (C_after - C_before) / (2.0 * h);
+    const Mat2 C_ddot = (C_after - 2.0 * C + C_before) / (h * h);
+    pd_cmd += k * m * (C * s.jerk_m_s3 + C_dot * s.acceleration_m_s2);
+    pdd_cmd += k * m * (C * s.snap_m_s4 + 2.0 * C_dot * s.jerk_m_s3 + C_ddot * s.acceleration_m_s2);
+  }
+
+  const kinematics::InverseResult ik = robot_.solve_inverse(c.command_m);
+  if (ik.status != kinematics::Reach::ok) {
+    c.status = Status::unreachable;
+    return c;
+  }
+  c.q_rad = ik.q;
+  const Mat2 J = robot_.jacobian(ik.q);
+  c.qd_rad_s = J.inverse() * pd_cmd;
+  c.qdd_rad_s2 = J.inverse() * (pdd_cmd - robot_.jacobian_dot(ik.q, c.qd_rad_s) * c.qd_rad_s);
+  if (options_.check_limits) {
+    int joint = -1;
+    switch (kinematics::check_joint_limits(spec_, c.q_rad, c.qd_rad_s, c.qdd_rad_s2, joint)) {
+      case kinematics::JointCheck::ok: break;
+      case kinematics::JointCheck::position: c.status = Status::joint_position; break;
+      case kinematics::JointCheck::velocity: c.status = Status::joint_velocity; break;
+      case kinematics::JointCheck::acceleration: c.status = Status::joint_acceleration; break;
+    }
+    c.joint = joint;
+  }
+  return c;
+}
+
+}  // namespace stiffpath::compensation
