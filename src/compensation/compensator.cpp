@@ -56,14 +56,16 @@ JointCommand Compensator::step(const TaskSample& s) const noexcept {
     c.status = Status::outside_grid;
     return c;
   }
-  c.deflection_m = model_->predict(s.position_m, c.force_N);
+  // Δ = model.predict(p, F), written out so that C(p) serves the derivatives below too.
+  const Mat2 C = model_->compliance(s.position_m);
+  c.deflection_m = C * c.force_N;
+  if (model_->zero_force() == compliance::ZeroForce::thesis_raw) c.deflection_m += model_->offset(s.position_m);
   c.command_m = s.position_m - k * c.deflection_m;
 
   Vec2 pd_cmd = s.velocity_m_s, pdd_cmd = s.acceleration_m_s2;
   if (k != 0.0) {
     // Δ = −m·C(p(t))·a(t): dΔ/dt = −m·(C·j + Ċ·a), d²Δ/dt² = −m·(C·s + 2·Ċ·j + C̈·a). Ċ and C̈ come
     // from C at p(t ± h) = p ± v·h + a·h²/2, with h such that the points lie ~0.1 mm apart.
-    const Mat2 C = model_->compliance(s.position_m);
     const double speed = s.velocity_m_s.norm();
     const double h = speed * kMaxTimeStep_s > kDerivativeStep_m ? kDerivativeStep_m / speed : kMaxTimeStep_s;
     const Vec2 drift = 0.5 * h * h * s.acceleration_m_s2;
@@ -75,15 +77,16 @@ JointCommand Compensator::step(const TaskSample& s) const noexcept {
     pdd_cmd += k * m * (C * s.snap_m_s4 + 2.0 * C_dot * s.jerk_m_s3 + C_ddot * s.acceleration_m_s2);
   }
 
-  const kinematics::InverseResult ik = robot_.solve_inverse(c.command_m);
+  Mat2 J;
+  const kinematics::InverseResult ik = robot_.solve_inverse(c.command_m, J);
   if (ik.status != kinematics::Reach::ok) {
     c.status = Status::unreachable;
     return c;
   }
   c.q_rad = ik.q;
-  const Mat2 J = robot_.jacobian(ik.q);
-  c.qd_rad_s = J.inverse() * pd_cmd;
-  c.qdd_rad_s2 = J.inverse() * (pdd_cmd - robot_.jacobian_dot(ik.q, c.qd_rad_s) * c.qd_rad_s);
+  const Mat2 J_inv = J.inverse();
+  c.qd_rad_s = J_inv * pd_cmd;
+  c.qdd_rad_s2 = J_inv * (pdd_cmd - kinematics::FiveBar::jacobian_dot_from(J, c.qd_rad_s) * c.qd_rad_s);
   if (options_.check_limits) {
     int joint = -1;
     switch (kinematics::check_joint_limits(spec_, c.q_rad, c.qd_rad_s, c.qdd_rad_s2, joint)) {

@@ -34,12 +34,14 @@ int PhysicalModel::basis(const GridBounds& g, int order, const Vec2& p, std::arr
 }
 
 Mat2 PhysicalModel::link_force_map(double l, const Vec2& p) noexcept {
-  // Eq. 2.2 for θ1, θ2; r is kept just inside (0, 2l) so that the map stays finite.
-  const double r = std::clamp(p.norm(), 1e-9, 2.0 * l * (1.0 - 1e-12));
-  const double phi = std::atan2(p.y(), p.x());
-  const double eta = std::acos(r / (2.0 * l));
-  const double t1 = phi + eta, t2 = phi - eta;
-  const double c1 = std::cos(t1), s1 = std::sin(t1), c2 = std::cos(t2), s2 = std::sin(t2);
+  // Eq. 2.2 without trigonometry: cos/sin of θ1,2 = φ ± η from cos φ = x/r, sin φ = y/r,
+  // cos η = r/2l, sin η = √(1 − cos²η). r is kept just inside (0, 2l) so that the map stays finite.
+  const double r_raw = p.norm();
+  const double r = std::clamp(r_raw, 1e-9, 2.0 * l * (1.0 - 1e-12));
+  const double c_phi = r_raw > 0.0 ? p.x() / r_raw : 1.0, s_phi = r_raw > 0.0 ? p.y() / r_raw : 0.0;
+  const double c_eta = r / (2.0 * l), s_eta = std::sqrt(1.0 - c_eta * c_eta);
+  const double c1 = c_phi * c_eta - s_phi * s_eta, s1 = s_phi * c_eta + c_phi * s_eta;
+  const double c2 = c_phi * c_eta + s_phi * s_eta, s2 = s_phi * c_eta - c_phi * s_eta;
   // U = [w2 w1] = [c2 c1; s2 s1], det U = c2·s1 − c1·s2 = sin(θ1 − θ2) = sin 2η > 0.
   const double det = c2 * s1 - c1 * s2;
   Mat2 inv;

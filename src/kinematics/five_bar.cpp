@@ -20,14 +20,18 @@ Vec2 FiveBar::forward(const Vec2& q) const noexcept {
   return {l_ * (std::cos(q.x()) + std::cos(q.y())), l_ * (std::sin(q.x()) + std::sin(q.y()))};
 }
 
+namespace {
+// κ = max(tan η, cot η) from cos η = c and sin η = s (σ1,2 = l·√2·{cos η, sin η}).
+double condition_from(double c, double s) noexcept {
+  if (c <= 0.0 || s <= 0.0) return std::numeric_limits<double>::infinity();
+  return std::max(s / c, c / s);
+}
+}  // namespace
+
 double FiveBar::condition_number_at_radius(double r) const noexcept {
-  // η = acos(r/2l); σ1,2 = l·√2·{cos η, sin η}; κ = max(tan η, cot η).
   const double c = std::abs(r) / (2.0 * l_);
   if (c >= 1.0) return std::numeric_limits<double>::infinity();
-  const double eta = std::acos(c);
-  const double t = std::tan(eta);
-  if (t <= 0.0) return std::numeric_limits<double>::infinity();
-  return std::max(t, 1.0 / t);
+  return condition_from(c, std::sqrt(1.0 - c * c));
 }
 
 Reach FiveBar::check_reach(const Vec2& p) const noexcept {
@@ -35,11 +39,16 @@ Reach FiveBar::check_reach(const Vec2& p) const noexcept {
   const double r = p.norm();
   if (r > 2.0 * l_ - margin_.min_distance_m) return Reach::near_stretched;
   if (r < margin_.min_distance_m) return Reach::near_origin;
-  if (condition_number_at_radius(r) > margin_.max_condition_number) return Reach::ill_conditioned;
+  if (!(condition_number_at_radius(r) <= margin_.max_condition_number)) return Reach::ill_conditioned;
   return Reach::ok;
 }
 
 InverseResult FiveBar::solve_inverse(const Vec2& p) const noexcept {
+  Mat2 unused;
+  return solve_inverse(p, unused);
+}
+
+InverseResult FiveBar::solve_inverse(const Vec2& p, Mat2& jacobian) const noexcept {
   InverseResult result;
   result.status = check_reach(p);
   if (result.status != Reach::ok) {
@@ -47,11 +56,23 @@ InverseResult FiveBar::solve_inverse(const Vec2& p) const noexcept {
     return result;
   }
   const double r = p.norm();
+  const double c_eta = r / (2.0 * l_), s_eta = std::sqrt(1.0 - c_eta * c_eta);
+  const double c_phi = p.x() / r, s_phi = p.y() / r;
   const double phi = std::atan2(p.y(), p.x());
-  const double eta = std::acos(r / (2.0 * l_));
+  const double eta = std::acos(c_eta);
   result.q = {phi + eta, phi - eta};
-  result.condition_number = condition_number_at_radius(r);
+  result.condition_number = condition_from(c_eta, s_eta);
+  // cos/sin of φ ± η by the angle-sum identities.
+  const double c1 = c_phi * c_eta - s_phi * s_eta, s1 = s_phi * c_eta + c_phi * s_eta;
+  const double c2 = c_phi * c_eta + s_phi * s_eta, s2 = s_phi * c_eta - c_phi * s_eta;
+  jacobian << -l_ * s1, -l_ * s2, l_ * c1, l_ * c2;
   return result;
+}
+
+Mat2 FiveBar::jacobian_dot_from(const Mat2& J, const Vec2& qd) noexcept {
+  Mat2 Jd;
+  Jd << -J(1, 0) * qd.x(), -J(1, 1) * qd.y(), J(0, 0) * qd.x(), J(0, 1) * qd.y();
+  return Jd;
 }
 
 Mat2 FiveBar::jacobian(const Vec2& q) const noexcept {

@@ -157,7 +157,7 @@ TEST(ModelFile, RoundTripsEveryMethod) {
     EXPECT_EQ(back.model->outside_policy(), OutsidePolicy::extrapolate);
     EXPECT_EQ(back.model->zero_force(), ZeroForce::thesis_raw);
     EXPECT_EQ(back.provenance.mechanism, "OC");
-    for (const Vec2& p : {Vec2(0.2, 0.01), Vec2(0.26, -0.07), Vec2(0.29, 0.08)}) {
+    for (const Vec2& p : {Vec2(0.2, 0.01), Vec2(0.26, -0.07), Vec2(0.28, 0.085)}) {  // the last one off the grid
       const Vec2 F{150.0, -90.0};
       EXPECT_LT((back.model->predict(p, F) - fitted.model->predict(p, F)).norm(), 1e-12) << method;
     }

@@ -122,6 +122,20 @@ TEST(FiveBar, AccelerationLevelMatchesSecondDifferenceOfForward) {
   EXPECT_LT((robot.acceleration(q0, qd, qdd) - numeric).norm(), 2e-6);
 }
 
+TEST(FiveBar, JacobianFromInverseAndJacobianDotFromJacobianMatchTheDirectForms) {
+  const FiveBar robot(kL);
+  std::mt19937_64 rng(kSeed + 7);
+  std::uniform_real_distribution<double> rate(-20.0, 20.0);
+  for (int i = 0; i < 2000; ++i) {
+    Mat2 J;
+    const InverseResult r = robot.solve_inverse(random_workspace_point(rng), J);
+    ASSERT_EQ(r.status, Reach::ok);
+    ASSERT_LT((J - robot.jacobian(r.q)).norm(), 1e-15);
+    const Vec2 qd{rate(rng), rate(rng)};
+    ASSERT_LT((FiveBar::jacobian_dot_from(J, qd) - robot.jacobian_dot(r.q, qd)).norm(), 1e-13);
+  }
+}
+
 TEST(FiveBar, ClosedFormConditionNumberMatchesSvd) {
   const FiveBar robot(kL);
   std::mt19937_64 rng(kSeed + 5);

@@ -26,6 +26,12 @@ class FiveBar final : public Mechanism {
   [[nodiscard]] Vec2 forward(const Vec2& q) const noexcept override;
   //! Eq. 2.2 with the reach check of check_reach().
   [[nodiscard]] InverseResult solve_inverse(const Vec2& p) const noexcept override;
+  //! The same, also giving J at the solution without further trigonometry: cos θ1,2 and sin θ1,2
+  //! follow from cos φ = x/r, sin φ = y/r, cos η = r/2l, sin η = √(1 − cos²η). `jacobian` is left
+  //! unchanged unless the status is ok. For the real-time path.
+  [[nodiscard]] InverseResult solve_inverse(const Vec2& p, Mat2& jacobian) const noexcept;
+  //! J̇ from J: each column of J rotates with its joint, J̇ = R90·J·diag(q̇).
+  [[nodiscard]] static Mat2 jacobian_dot_from(const Mat2& jacobian, const Vec2& qd) noexcept;
   //! J = l [−sin θ1, −sin θ2; cos θ1, cos θ2].
   [[nodiscard]] Mat2 jacobian(const Vec2& q) const noexcept override;
   //! J̇ = l [−cos θ1 θ̇1, −cos θ2 θ̇2; −sin θ1 θ̇1, −sin θ2 θ̇2].

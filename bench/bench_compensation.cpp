@@ -1,0 +1,71 @@
+// Benchmarks of compensation: Compensator::step() latency distribution (median, p99.9, max) against 500 µs at 2 kHz.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+#include "stiffpath/compensation/compensator.hpp"
+#include "stiffpath/compliance/model_factory.hpp"
+
+namespace {
+using namespace stiffpath;
+
+// One hour would be 7.2 M samples; 400 000 samples (200 s at 2 kHz) keep the run short.
+std::vector<compensation::TaskSample> job_samples() {
+  std::vector<compensation::TaskSample> out;
+  const double w = 2 * M_PI * 2.0;
+  for (int k = 0; k < 400000; ++k) {
+    const double t = k / 2000.0;
+    compensation::TaskSample s;
+    s.t_s = t;
+    s.position_m = {0.222 + 0.045 * std::sin(w * t), 0.07 * std::sin(2 * w * t)};
+    s.velocity_m_s = {0.045 * w * std::cos(w * t), 0.14 * w * std::cos(2 * w * t)};
+    s.acceleration_m_s2 = {-0.045 * w * w * std::sin(w * t), -0.28 * w * w * std::sin(2 * w * t)};
+    s.jerk_m_s3 = {-0.045 * w * w * w * std::cos(w * t), -0.56 * w * w * w * std::cos(2 * w * t)};
+    out.push_back(s);
+  }
+  return out;
+}
+
+void BM_StepLatency(benchmark::State& state, const char* model_name) {
+  const auto samples = job_samples();
+  const compensation::Compensator comp(kinematics::load_mechanism("oc-gu"),
+                                       std::shared_ptr<const compliance::Model>(compliance::load_model(model_name).model.release()));
+  std::vector<double> ns(samples.size());
+  using clock = std::chrono::steady_clock;
+  // The clock's own cost, subtracted from every reading.
+  auto t0 = clock::now();
+  for (int i = 0; i < 100000; ++i) benchmark::DoNotOptimize(clock::now());
+  const double clock_ns = std::chrono::duration<double, std::nano>(clock::now() - t0).count() / 100000.0;
+  for (auto _ : state) {
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+      const auto a = clock::now();
+      benchmark::DoNotOptimize(comp.step(samples[k]));
+      const auto b = clock::now();
+      ns[k] = std::chrono::duration<double, std::nano>(b - a).count() - clock_ns;
+    }
+  }
+  std::sort(ns.begin(), ns.end());
+  state.counters["median_ns"] = ns[ns.size() / 2];
+  state.counters["p99_ns"] = ns[ns.size() * 99 / 100];
+  state.counters["p99.9_ns"] = ns[ns.size() * 999 / 1000];
+  state.counters["max_ns"] = ns.back();
+  state.counters["samples"] = static_cast<double>(ns.size());
+}
+BENCHMARK_CAPTURE(BM_StepLatency, bilinear, "thesis-oc")->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_StepLatency, physical, "thesis-oc-physical")->Iterations(1)->Unit(benchmark::kMillisecond);
+
+void BM_StepThroughput(benchmark::State& state) {
+  const auto samples = job_samples();
+  const compensation::Compensator comp(kinematics::load_mechanism("oc-gu"),
+                                       std::shared_ptr<const compliance::Model>(compliance::load_model("thesis-oc").model.release()));
+  std::size_t k = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(comp.step(samples[k]));
+    if (++k == samples.size()) k = 0;
+  }
+}
+BENCHMARK(BM_StepThroughput);
+}  // namespace
