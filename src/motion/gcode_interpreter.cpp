@@ -11,7 +11,6 @@ using detail::GcodeBlock;
 
 namespace {
 constexpr double inch_m = 0.0254;
-constexpr double zero_length_m = 1e-12;  // moves shorter than a picometre are dropped
 }  // namespace
 
 GcodeInterpreter::GcodeInterpreter(const GcodeOptions& options)
@@ -130,8 +129,8 @@ std::optional<PathSegment> GcodeInterpreter::move(const GcodeBlock& b, const Gco
   if (arc) {
     segment = build_arc(b, anchor, motion_ == 20, start, end, scale_m_, options_.arc_tolerance_m);
   } else {
-    position_m_ = end;
-    if ((end - start).norm() < zero_length_m) return std::nullopt;
+    // A move below 1 nm is dropped; the position stays, so the next move starts where the last ended.
+    if ((end - start).norm() < shortest_segment_m) return std::nullopt;
     segment = make_line(start, end);
   }
   position_m_ = segment.end_m;

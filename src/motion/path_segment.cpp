@@ -64,7 +64,9 @@ PathPoint point_at(const PathSegment& segment, double s_m) noexcept {
       const double fraction = segment.length_m > 0.0 ? std::clamp(s_m / segment.length_m, 0.0, 1.0) : 0.0;
       const double angle = segment.start_angle_rad + fraction * segment.sweep_rad;
       const Vec2 radial(std::cos(angle), std::sin(angle));
-      point.position_m = fraction >= 1.0 ? segment.end_m : Vec2(segment.center_m + segment.radius_m * radial);
+      point.position_m = fraction >= 1.0   ? segment.end_m
+                         : fraction <= 0.0 ? segment.start_m
+                                           : Vec2(segment.center_m + segment.radius_m * radial);
       point.tangent = segment.sweep_rad >= 0.0 ? left_normal(radial) : Vec2(-left_normal(radial));
       point.curvature_1_m = curvature_1_m(segment);
       return point;

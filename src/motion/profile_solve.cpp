@@ -38,8 +38,13 @@ ProfileStatus solve_profile(const ProfileInput& in, Profile& out) noexcept {
   const double v_low = std::max(in.start_velocity_m_s, in.end_velocity_m_s);
   if (v_low > in.max_velocity_m_s * (1.0 + relative_tolerance)) return ProfileStatus::invalid_input;
   const double a = in.max_acceleration_m_s2, j = in.max_jerk_m_s3;
+  // Reachability is judged on speeds, like the planner's passes: when the speed change is a few
+  // thousand ulps of the speed, its distance is only known to a few 1e-5 (the speeds are rounded).
+  const double v_from = std::min(in.start_velocity_m_s, in.end_velocity_m_s);
+  if (v_low > reachable_speed(in.length_m, v_from, a, j) * (1.0 + relative_tolerance) + 1e-15) {
+    return ProfileStatus::unreachable;
+  }
   const double least_distance = speed_change(in.start_velocity_m_s, in.end_velocity_m_s, a, j).distance_m;
-  if (least_distance > in.length_m * (1.0 + relative_tolerance) + 1e-15) return ProfileStatus::unreachable;
 
   const double v_max = std::max(in.max_velocity_m_s, v_low);
   const double v_peak = least_distance >= in.length_m ? v_low : peak_speed(in, v_low, v_max);

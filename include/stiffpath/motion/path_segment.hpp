@@ -15,6 +15,10 @@ enum class SegmentKind : std::uint8_t {
   dwell,  //!< standing still for dwell_s (G4)
 };
 
+//! Moves shorter than this (1 nm) are dropped by the reader and absorbed by corner blends: their
+//! durations would fall below the resolution of the program clock.
+inline constexpr double shortest_segment_m = 1e-9;
+
 //! How the junction at the end of a segment is passed (G-code path control mode).
 enum class JunctionMode : std::uint8_t {
   exact_stop,  //!< G61: come to rest at every corner (tangent junctions are passed without stopping)

@@ -25,4 +25,18 @@ SpeedChange speed_change(double v_from_m_s, double v_to_m_s, double max_accelera
 double reachable_speed(double length_m, double v_from_m_s, double max_acceleration_m_s2,
                        double max_jerk_m_s3) noexcept;
 
+//! The highest speed at which a segment of length L may be entered so that it can be left at some
+//! speed in [0, exit_max] (the backward pass). Note that braking to rest can take less distance
+//! than braking part of the way: the distance (v_lo + v_hi)/2 · T(v_hi − v_lo) first rises, then
+//! falls as v_lo goes from 0 to v_hi. So the answer is max(reachable(L, 0), reachable(L, exit_max)).
+double max_entry_speed(double length_m, double exit_max_m_s, double max_acceleration_m_s2,
+                       double max_jerk_m_s3) noexcept;
+
+//! The highest exit speed in [0, exit_max] that a segment of length L entered at `entry` can reach
+//! (the forward pass), for an entry admitted by max_entry_speed. Usually min(exit_max,
+//! reachable(L, entry)); when that would mean braking part of the way over more than L, the
+//! largest lower exit that fits (found by bisection on the rising branch of the distance).
+double max_exit_speed(double length_m, double entry_m_s, double exit_max_m_s, double max_acceleration_m_s2,
+                      double max_jerk_m_s3) noexcept;
+
 }  // namespace stiffpath::motion
