@@ -14,6 +14,7 @@ void add_fit_command(CLI::App& app);
 void add_predict_command(CLI::App& app);
 void add_cv_command(CLI::App& app);
 void add_plot_command(CLI::App& app);
+void add_plan_command(CLI::App& app);
 
 //! Prints a JSON document on stdout (two-space indent, newline).
 void print_json(const nlohmann::json& document);

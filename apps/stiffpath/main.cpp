@@ -37,6 +37,7 @@ int main(int argc, char** argv) {
   stiffpath::cli::add_predict_command(app);
   stiffpath::cli::add_cv_command(app);
   stiffpath::cli::add_plot_command(app);
+  stiffpath::cli::add_plan_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

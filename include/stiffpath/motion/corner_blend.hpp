@@ -1,0 +1,46 @@
+// G64 corner rounding: a tangent arc between two lines, within the program's blend tolerance.
+#pragma once
+
+#include <deque>
+#include <optional>
+
+#include "stiffpath/motion/path_source.hpp"
+
+namespace stiffpath::motion {
+
+//! The fillet that rounds the corner between two lines meeting at `corner_m` with unit directions
+//! `in` and `out` (turn angle φ). The arc touches both lines at distance d = r·tan(φ/2) from the
+//! corner and passes the corner at r·(1/cos(φ/2) − 1) ≤ tolerance; d is at most `max_trim_m`.
+struct CornerFillet {
+  Vec2 entry_m = Vec2::Zero();   //!< where the arc leaves the first line
+  Vec2 exit_m = Vec2::Zero();    //!< where it joins the second line
+  Vec2 center_m = Vec2::Zero();
+  double radius_m = 0.0;
+  double sweep_rad = 0.0;        //!< signed: > 0 for a left turn
+  double trim_m = 0.0;           //!< d: how much each line loses
+};
+
+//! The fillet, or nullopt when the turn is a reversal (φ ≈ π) or the tolerance or room is zero.
+std::optional<CornerFillet> corner_fillet(const Vec2& corner_m, const Vec2& in, const Vec2& out, double tolerance_m,
+                                          double max_trim_m) noexcept;
+
+//! A path stage that replaces each blendable corner by a fillet arc: between two lines, when the
+//! first is in blend mode (G64) with a positive tolerance, the turn exceeds `corner_angle_rad`,
+//! and both lines have the same laser state and rapid flag (a mark must start where programmed).
+//! Each line gives up at most half its programmed length to each of its two corners. The fillet
+//! carries the first line's attributes with the lower of both feeds. Holds at most two segments.
+class CornerBlender final : public PathSource {
+ public:
+  CornerBlender(PathSource& source, double corner_angle_rad);
+  std::optional<PathSegment> next() override;
+
+ private:
+  PathSource& source_;
+  double corner_angle_rad_;
+  std::optional<PathSegment> held_;    // the last segment, whose end may still be trimmed
+  double held_length_m_ = 0.0;         // its programmed length
+  std::deque<PathSegment> ready_;
+  bool exhausted_ = false;
+};
+
+}  // namespace stiffpath::motion

@@ -1,0 +1,32 @@
+// How fast the path may pass the junction between two segments (corners, tangent joins, curvature steps).
+#pragma once
+
+#include "stiffpath/motion/limits.hpp"
+#include "stiffpath/motion/path_segment.hpp"
+#include "stiffpath/motion/segment_limits.hpp"
+
+namespace stiffpath::motion {
+
+//! The rules at junctions. Every profile starts and ends with zero tangential acceleration, so a
+//! junction passed at speed v only steps the velocity by 2·v·sin(φ/2) (φ: turn angle) and the
+//! acceleration by v²·|κ₂N₂ − κ₁N₁| (the centripetal terms). Both steps are bounded by what the jerk
+//! limit allows over one junction time τ: |Δv| ≤ j·τ², |Δa| ≤ j·τ. With τ = one 2 kHz sample, the
+//! sampled trajectory cannot tell such a step from a jerk-limited ramp.
+struct JunctionRules {
+  double junction_time_s = 0.5e-3;  //!< τ (s); 0.5 ms = one period of the 2 kHz loop (fig. 4.3)
+  //! A junction turning by more than this is a corner (rad): G61 stops there and G64 rounds it
+  //! (between lines). 1 mrad also tolerates the kinks of coordinates rounded to 1 µm on 1 mm moves.
+  double corner_angle_rad = 1e-3;
+};
+
+//! The turn angle φ ∈ [0, π] between two unit tangents.
+double turn_angle_rad(const Vec2& from, const Vec2& to) noexcept;
+
+//! The highest speed at the junction from `before` into `after`: 0 next to a dwell and at corners
+//! in exact-stop mode (G61, the mode of `before`); otherwise the lower of both segments' caps and
+//! the two step bounds above.
+double junction_speed_limit(const PathSegment& before, const SegmentLimits& before_limits, const PathSegment& after,
+                            const SegmentLimits& after_limits, const MotionLimits& limits,
+                            const JunctionRules& rules) noexcept;
+
+}  // namespace stiffpath::motion

@@ -1,0 +1,52 @@
+// A segment with its profile and start time, and the trajectory sample it gives at any instant.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+
+#include "stiffpath/motion/path_segment.hpp"
+#include "stiffpath/motion/profile.hpp"
+#include "stiffpath/motion/segment_limits.hpp"
+
+namespace stiffpath::motion {
+
+//! A segment whose timing is final: its geometry, limits, profile and when it starts.
+struct PlannedSegment {
+  PathSegment path;
+  SegmentLimits limits;
+  Profile profile;              //!< along the path; a dwell's profile only has its cruise phase at speed 0
+  double start_time_s = 0.0;    //!< from the start of the program (s)
+  std::size_t index = 0;        //!< 0-based position in the planned program
+
+  [[nodiscard]] double end_time_s() const noexcept { return start_time_s + profile.duration_s; }
+};
+
+//! The state of the planned path at one instant, robot frame, SI.
+struct TrajectorySample {
+  double t_s = 0.0;                       //!< time from the start of the program (s)
+  Vec2 position_m = Vec2::Zero();         //!< (m)
+  Vec2 velocity_m_s = Vec2::Zero();       //!< (m/s)
+  Vec2 acceleration_m_s2 = Vec2::Zero();  //!< analytic, centripetal part included (m/s²)
+  Vec2 jerk_m_s3 = Vec2::Zero();          //!< analytic (m/s³)
+  double path_speed_m_s = 0.0;            //!< speed along the path (m/s), ≥ 0
+  double laser_power = 0.0;               //!< S word in effect (controller units)
+  int line = 0;                           //!< source G-code line of the segment
+  std::size_t segment = 0;                //!< index of the planned segment
+  bool laser_on = false;                  //!< laser firing
+};
+
+//! The sample of a planned segment at time t_s (program time; clamped to the segment). With
+//! T the unit tangent, N its left normal and κ the signed curvature (1/m):
+//!   velocity = v·T,  acceleration = a·T + v²κ·N,  jerk = (j − v³κ²)·T + 3·v·a·κ·N,
+//! where s, v, a, j come from the profile (thesis §4.3, fig. 4.3: "trapezoidal acceleration profile").
+TrajectorySample evaluate(const PlannedSegment& segment, double t_s) noexcept;
+
+//! Something that hands out planned segments in time order; nullopt at the end (a Planner, or a
+//! stored Trajectory's cursor).
+class SegmentSource {
+ public:
+  virtual ~SegmentSource() = default;
+  virtual std::optional<PlannedSegment> next() = 0;
+};
+
+}  // namespace stiffpath::motion

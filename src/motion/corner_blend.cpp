@@ -1,0 +1,92 @@
+// Corner blending for G64: tangent fillet arcs between lines, trimming each line by at most half its length.
+#include "stiffpath/motion/corner_blend.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "stiffpath/motion/junction.hpp"
+
+namespace stiffpath::motion {
+
+std::optional<CornerFillet> corner_fillet(const Vec2& corner_m, const Vec2& in, const Vec2& out, double tolerance_m,
+                                          double max_trim_m) noexcept {
+  const double angle = turn_angle_rad(in, out);
+  if (!(tolerance_m > 0.0) || !(max_trim_m > 0.0) || angle <= 0.0 || angle > std::numbers::pi - 1e-6) {
+    return std::nullopt;
+  }
+  const double half = 0.5 * angle;
+  // Distance from the corner to the arc's midpoint is r·(1/cos(φ/2) − 1); solve for the largest r.
+  const double radius_for_tolerance = tolerance_m * std::cos(half) / (1.0 - std::cos(half));
+  const double trim = std::min(radius_for_tolerance * std::tan(half), max_trim_m);
+  CornerFillet fillet;
+  fillet.trim_m = trim;
+  fillet.radius_m = trim / std::tan(half);
+  fillet.entry_m = corner_m - trim * in;
+  fillet.exit_m = corner_m + trim * out;
+  const bool left = in.x() * out.y() - in.y() * out.x() > 0.0;
+  fillet.center_m = fillet.entry_m + (left ? 1.0 : -1.0) * fillet.radius_m * left_normal(in);
+  fillet.sweep_rad = left ? angle : -angle;
+  return fillet;
+}
+
+CornerBlender::CornerBlender(PathSource& source, double corner_angle_rad)
+    : source_(source), corner_angle_rad_(corner_angle_rad) {}
+
+std::optional<PathSegment> CornerBlender::next() {
+  while (ready_.empty()) {
+    if (exhausted_) {
+      if (!held_) return std::nullopt;
+      ready_.push_back(*held_);
+      held_.reset();
+      break;
+    }
+    std::optional<PathSegment> incoming = source_.next();
+    if (!incoming) {
+      exhausted_ = true;
+      continue;
+    }
+    if (!held_) {
+      held_ = *incoming;
+      held_length_m_ = incoming->length_m;
+      continue;
+    }
+    PathSegment& a = *held_;
+    PathSegment b = *incoming;
+    const bool blendable = a.kind == SegmentKind::line && b.kind == SegmentKind::line &&
+                           a.mode == JunctionMode::blend && a.laser_on == b.laser_on && a.rapid == b.rapid;
+    const Vec2 in = end_tangent(a), out = start_tangent(b);
+    std::optional<CornerFillet> fillet;
+    if (blendable && turn_angle_rad(in, out) > corner_angle_rad_) {
+      fillet = corner_fillet(a.end_m, in, out, a.blend_tolerance_m, 0.5 * std::min(held_length_m_, b.length_m));
+    }
+    if (fillet) {
+      // If the two blends of a line leave (almost) nothing of it, the arc starts where the line did.
+      a.end_m = fillet->entry_m;
+      a.length_m = (a.end_m - a.start_m).norm();
+      const bool keep_line = a.length_m >= shortest_segment_m;
+      PathSegment arc = make_arc(keep_line ? fillet->entry_m : a.start_m, fillet->exit_m, fillet->center_m,
+                                 fillet->sweep_rad);
+      arc.feed_m_s = std::min(a.feed_m_s, b.feed_m_s);
+      arc.laser_power = a.laser_power;
+      arc.blend_tolerance_m = a.blend_tolerance_m;
+      arc.line = a.line;
+      arc.rapid = a.rapid;
+      arc.laser_on = a.laser_on;
+      arc.mode = a.mode;
+      if (keep_line) ready_.push_back(a);
+      ready_.push_back(arc);
+      b.start_m = fillet->exit_m;
+      b.length_m = (b.end_m - b.start_m).norm();
+    } else {
+      ready_.push_back(a);
+    }
+    held_length_m_ = incoming->length_m;
+    held_ = b;
+  }
+  PathSegment out = ready_.front();
+  ready_.pop_front();
+  return out;
+}
+
+}  // namespace stiffpath::motion

@@ -1,0 +1,42 @@
+// Internal: one G-code line's words sorted into modal groups and value words, with the line's checks.
+#pragma once
+
+#include <span>
+
+#include "stiffpath/core/error.hpp"
+#include "stiffpath/motion/gcode_lexer.hpp"
+
+namespace stiffpath::motion::detail {
+
+//! A G or M number in tenths (G61.1 → 611), or −1 when it has more than one decimal.
+int code_tenths(double value) noexcept;
+
+//! The words of one line by role; null where absent. Pointers into the lexer's word vector.
+struct GcodeBlock {
+  const GcodeWord* motion = nullptr;      //!< G0, G1, G2, G3
+  const GcodeWord* non_modal = nullptr;   //!< G4 (dwell) or G92 (coordinate offset)
+  const GcodeWord* units = nullptr;       //!< G20, G21
+  const GcodeWord* distance = nullptr;    //!< G90, G91
+  const GcodeWord* path_mode = nullptr;   //!< G61, G61.1, G64
+  const GcodeWord* spindle = nullptr;     //!< M3, M4, M5
+  const GcodeWord* stop = nullptr;        //!< M2, M30
+  const GcodeWord* x = nullptr;
+  const GcodeWord* y = nullptr;
+  const GcodeWord* i = nullptr;
+  const GcodeWord* j = nullptr;
+  const GcodeWord* r = nullptr;
+  const GcodeWord* f = nullptr;
+  const GcodeWord* s = nullptr;
+  const GcodeWord* p = nullptr;
+  SourceLocation where;  //!< file and line (column 0)
+
+  //! Throws Error at the word's column: "<word>: message".
+  [[noreturn]] void fail(const GcodeWord& word, const std::string& message) const;
+  [[nodiscard]] bool has_axis() const noexcept { return x != nullptr || y != nullptr; }
+};
+
+//! Sorts the words; throws for an unsupported or duplicated word (a second motion word, two words
+//! of one modal group, an axis given twice, other planes, cutter compensation, canned cycles …).
+GcodeBlock parse_block(std::span<const GcodeWord> words, const SourceLocation& where);
+
+}  // namespace stiffpath::motion::detail

@@ -1,0 +1,77 @@
+// CSV output of sampled trajectories (buffered, atomic) and the peak summary of a job.
+#include "stiffpath/motion/trajectory_csv.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+
+#include "stiffpath/core/atomic_file.hpp"
+#include "stiffpath/core/units.hpp"
+
+namespace stiffpath::motion {
+
+void SummaryAccumulator::add(const TrajectorySample& sample) noexcept {
+  summary_.duration_s = sample.t_s;
+  ++summary_.samples;
+  summary_.peak_velocity_m_s = std::max(summary_.peak_velocity_m_s, sample.velocity_m_s.norm());
+  summary_.peak_acceleration_m_s2 = std::max(summary_.peak_acceleration_m_s2, sample.acceleration_m_s2.norm());
+  summary_.peak_jerk_m_s3 = std::max(summary_.peak_jerk_m_s3, sample.jerk_m_s3.norm());
+  if (sample.laser_on) summary_.laser_on_s += period_s_;
+}
+
+namespace {
+
+constexpr std::size_t flush_bytes = 1 << 16;
+
+// A fixed-point number with `decimals` digits; values that round to zero print as 0 (never "-0.000").
+void put(fmt::memory_buffer& buffer, double value, int decimals) {
+  static constexpr double half_unit[] = {0.5, 0.05, 0.005, 5e-4, 5e-5, 5e-6, 5e-7, 5e-8};
+  if (std::abs(value) < half_unit[decimals]) value = 0.0;
+  fmt::format_to(std::back_inserter(buffer), "{:.{}f},", value, decimals);
+}
+
+}  // namespace
+
+TrajectoryCsvWriter::TrajectoryCsvWriter(std::ostream& out) : out_(out) {
+  out_ << trajectory_csv_header << '\n';
+}
+
+void TrajectoryCsvWriter::write(const TrajectorySample& s) {
+  put(buffer_, s.t_s, 7);
+  put(buffer_, units::m_to_mm(s.position_m.x()), 6);
+  put(buffer_, units::m_to_mm(s.position_m.y()), 6);
+  put(buffer_, units::m_to_mm(s.velocity_m_s.x()), 6);
+  put(buffer_, units::m_to_mm(s.velocity_m_s.y()), 6);
+  put(buffer_, units::m_to_mm(s.acceleration_m_s2.x()), 4);
+  put(buffer_, units::m_to_mm(s.acceleration_m_s2.y()), 4);
+  put(buffer_, units::m_to_mm(s.jerk_m_s3.x()), 2);
+  put(buffer_, units::m_to_mm(s.jerk_m_s3.y()), 2);
+  fmt::format_to(std::back_inserter(buffer_), "{},{},{}\n", s.laser_on ? 1 : 0, s.laser_power, s.line);
+  if (buffer_.size() >= flush_bytes) flush();
+}
+
+void TrajectoryCsvWriter::flush() {
+  out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+  buffer_.clear();
+}
+
+TrajectorySummary write_trajectory_csv(SampleSource& samples, double rate_hz, const std::filesystem::path& path) {
+  core::AtomicFile file(path);
+  TrajectoryCsvWriter writer(file.stream());
+  SummaryAccumulator summary(rate_hz);
+  while (auto sample = samples.next()) {
+    writer.write(*sample);
+    summary.add(*sample);
+  }
+  writer.flush();
+  file.commit();
+  return summary.summary();
+}
+
+TrajectorySummary summarize(SampleSource& samples, double rate_hz) {
+  SummaryAccumulator summary(rate_hz);
+  while (auto sample = samples.next()) summary.add(*sample);
+  return summary.summary();
+}
+
+}  // namespace stiffpath::motion

@@ -1,0 +1,39 @@
+// TrajectoryStream and plan_gcode: the motion stages chained for one program.
+#include "stiffpath/motion/trajectory_stream.hpp"
+
+namespace stiffpath::motion {
+
+TrajectoryStream::TrajectoryStream(const std::filesystem::path& gcode, const PlanOptions& options)
+    : reader_(std::make_unique<GcodeReader>(gcode, options.gcode)),
+      blender_(std::make_unique<CornerBlender>(*reader_, options.planner.junction.corner_angle_rad)),
+      planner_(std::make_unique<Planner>(*blender_, options.limits, options.planner)),
+      sampler_(std::make_unique<Sampler>(*planner_, options.rate_hz)) {}
+
+TrajectoryStream::TrajectoryStream(std::istream& in, std::string label, const PlanOptions& options)
+    : reader_(std::make_unique<GcodeReader>(in, std::move(label), options.gcode)),
+      blender_(std::make_unique<CornerBlender>(*reader_, options.planner.junction.corner_angle_rad)),
+      planner_(std::make_unique<Planner>(*blender_, options.limits, options.planner)),
+      sampler_(std::make_unique<Sampler>(*planner_, options.rate_hz)) {}
+
+TrajectoryStream::~TrajectoryStream() = default;
+
+std::optional<TrajectorySample> TrajectoryStream::next() { return sampler_->next(); }
+
+namespace {
+Trajectory plan_from(GcodeReader& reader, const PlanOptions& options) {
+  CornerBlender blender(reader, options.planner.junction.corner_angle_rad);
+  return Trajectory::plan(blender, options.limits, options.planner);
+}
+}  // namespace
+
+Trajectory plan_gcode(const std::filesystem::path& gcode, const PlanOptions& options) {
+  GcodeReader reader(gcode, options.gcode);
+  return plan_from(reader, options);
+}
+
+Trajectory plan_gcode(std::istream& in, const std::string& label, const PlanOptions& options) {
+  GcodeReader reader(in, label, options.gcode);
+  return plan_from(reader, options);
+}
+
+}  // namespace stiffpath::motion

@@ -1,0 +1,2 @@
+; expect: 2:1: O100: program numbers and subroutines are not supported
+O100

@@ -1,0 +1,2 @@
+; expect: 2:1: M6: tool changes are not supported
+M6

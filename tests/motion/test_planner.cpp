@@ -1,0 +1,131 @@
+// Planner property tests over seeded random programs: limits, continuity, G61 stops, and whole-program look-ahead.
+#include <gtest/gtest.h>
+
+#include <random>
+#include <sstream>
+
+#include "planner_checks.hpp"
+#include "random_cases.hpp"
+#include "random_program.hpp"
+#include "stiffpath/motion/speed_change.hpp"
+
+namespace stiffpath::motion {
+namespace {
+
+using test::plan_text;
+
+TEST(PlannerRandom, EveryProgramStaysWithinLimitsAndJoinsContinuously) {
+  std::mt19937_64 rng(99);
+  const int programs = std::max(4, test::random_cases(400) / 10);
+  for (int p = 0; p < programs; ++p) {
+    const std::string gcode = test::random_program(rng, 60);
+    PlanOptions options;
+    options.limits.max_acceleration_m_s2 = 5 + 60 * (p % 7) / 6.0;   // 5 … 65 m/s²
+    options.limits.max_jerk_m_s3 = options.limits.max_acceleration_m_s2 / (0.002 + 0.002 * (p % 5));
+    const Trajectory trajectory = plan_text(gcode, options);
+    SCOPED_TRACE("program " + std::to_string(p) + ":\n" + gcode);
+    ASSERT_FALSE(trajectory.empty());
+    test::expect_within_limits(trajectory, options.limits);
+    test::expect_continuous_junctions(trajectory, options.limits);
+    if (HasFatalFailure()) return;
+  }
+}
+
+// The reference: whole-program look-ahead written out plainly (all junction limits, a full backward
+// pass, a forward pass) on the same segments.
+std::vector<double> reference_junction_speeds(const std::string& gcode, const PlanOptions& options) {
+  std::istringstream in(gcode);
+  GcodeReader reader(in, "job.gcode", options.gcode);
+  CornerBlender blender(reader, options.planner.junction.corner_angle_rad);
+  std::vector<PathSegment> segs;
+  while (auto s = blender.next()) segs.push_back(*s);
+  const std::size_t n = segs.size();
+  std::vector<SegmentLimits> lim(n);
+  for (std::size_t i = 0; i < n; ++i) lim[i] = segment_limits(segs[i], options.limits);
+  std::vector<double> entry_max(n + 1, 0.0);  // entry_max[n]: the end of the program, at rest
+  for (std::size_t i = n; i-- > 0;) {
+    const double junction =
+        i == 0 ? 0.0 : junction_speed_limit(segs[i - 1], lim[i - 1], segs[i], lim[i], options.limits, options.planner.junction);
+    const auto& l = lim[i];
+    const double braking = segs[i].kind == SegmentKind::dwell
+                               ? 0.0
+                               : max_entry_speed(segs[i].length_m, entry_max[i + 1], l.max_acceleration_m_s2, l.max_jerk_m_s3);
+    entry_max[i] = std::min(junction, braking);
+  }
+  std::vector<double> speed(n + 1, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& l = lim[i];
+    speed[i + 1] = segs[i].kind == SegmentKind::dwell
+                       ? 0.0
+                       : max_exit_speed(segs[i].length_m, speed[i], entry_max[i + 1], l.max_acceleration_m_s2, l.max_jerk_m_s3);
+  }
+  return speed;
+}
+
+TEST(PlannerRandom, StreamedPlanEqualsWholeProgramLookAhead) {
+  std::mt19937_64 rng(5);
+  for (int p = 0; p < std::max(4, test::random_cases(400) / 20); ++p) {
+    const std::string gcode = test::random_program(rng, 80);
+    const PlanOptions options;
+    const Trajectory trajectory = plan_text(gcode, options);
+    const std::vector<double> reference = reference_junction_speeds(gcode, options);
+    ASSERT_EQ(reference.size(), trajectory.segments().size() + 1);
+    for (std::size_t i = 0; i < trajectory.segments().size(); ++i) {
+      ASSERT_EQ(trajectory.segments()[i].profile.start_velocity_m_s, reference[i]) << "program " << p << " segment " << i;
+      ASSERT_EQ(trajectory.segments()[i].profile.end_velocity_m_s, reference[i + 1]) << "program " << p;
+    }
+  }
+}
+
+TEST(PlannerRandom, BoundedWindowStaysFeasibleAndIsNeverFaster) {
+  std::mt19937_64 rng(17);
+  for (int p = 0; p < 6; ++p) {
+    const std::string gcode = test::random_program(rng, 80);
+    PlanOptions bounded;
+    bounded.planner.max_lookahead_segments = 3;
+    const Trajectory exact = plan_text(gcode), windowed = plan_text(gcode, bounded);
+    test::expect_within_limits(windowed, bounded.limits);
+    test::expect_continuous_junctions(windowed, bounded.limits);
+    ASSERT_EQ(exact.segments().size(), windowed.segments().size());
+    EXPECT_GE(windowed.duration_s(), exact.duration_s() * (1 - 1e-12));
+    for (std::size_t i = 0; i < exact.segments().size(); ++i) {
+      EXPECT_LE(windowed.segments()[i].profile.end_velocity_m_s, exact.segments()[i].profile.end_velocity_m_s * (1 + 1e-12));
+    }
+  }
+}
+
+TEST(PlannerRandom, AnalyticDerivativesMatchFiniteDifferencesOnLinesAndArcs) {
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const Trajectory trajectory = plan_text(test::random_program(rng, 120));
+  const double eps = std::numeric_limits<double>::epsilon();
+  int arcs = 0;
+  for (const auto& seg : trajectory.segments()) {
+    // Differences over steps near the resolution of the program clock (ulp(t) ≈ 1e-16 s) say nothing.
+    if (seg.path.kind == SegmentKind::dwell || seg.profile.duration_s < 1e-6) continue;
+    arcs += seg.path.kind == SegmentKind::arc;
+    const double h = 1e-4 * seg.profile.duration_s, t = seg.start_time_s + 2 * h + (seg.profile.duration_s - 4 * h) * unit(rng);
+    const TrajectorySample m = evaluate(seg, t - h), z = evaluate(seg, t), q = evaluate(seg, t + h);
+    const MotionLimits lim;
+    const double pos_scale = z.position_m.norm(), vel_scale = 2.0, acc_scale = lim.max_acceleration_m_s2;
+    EXPECT_LT(((q.position_m - m.position_m) / (2 * h) - z.velocity_m_s).norm(),
+              lim.max_acceleration_m_s2 * h + 8 * eps * pos_scale / h) << "line " << seg.path.line;
+    EXPECT_LT(((q.velocity_m_s - m.velocity_m_s) / (2 * h) - z.acceleration_m_s2).norm(),
+              lim.max_jerk_m_s3 * h + 8 * eps * vel_scale / h + 1e-9) << "line " << seg.path.line;
+    // The profile's jerk switches between phases; compare where no phase boundary lies within ±h.
+    bool switch_nearby = false;
+    double boundary = seg.start_time_s;
+    for (const double phase : seg.profile.phase_s) {
+      boundary += phase;
+      switch_nearby = switch_nearby || std::abs(boundary - t) <= 1.01 * h;
+    }
+    if (!switch_nearby) {
+      EXPECT_LT(((q.acceleration_m_s2 - m.acceleration_m_s2) / (2 * h) - z.jerk_m_s3).norm(),
+                1e-3 * lim.max_jerk_m_s3 + 8 * eps * acc_scale / h) << "line " << seg.path.line;
+    }
+  }
+  EXPECT_GT(arcs, 10);
+}
+
+}  // namespace
+}  // namespace stiffpath::motion
