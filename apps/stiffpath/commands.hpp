@@ -10,6 +10,10 @@ namespace stiffpath::cli {
 void add_kin_command(CLI::App& app);
 void add_mechanism_command(CLI::App& app);
 void add_mobility_command(CLI::App& app);
+void add_measure_command(CLI::App& app);
+void add_campaign_command(CLI::App& app);
+void add_data_command(CLI::App& app);
+void add_repeatability_command(CLI::App& app);
 
 //! Prints a JSON document on stdout (two-space indent, newline).
 void print_json(const nlohmann::json& document);
