@@ -6,7 +6,6 @@
 #include <cmath>
 #include <map>
 #include <optional>
-#include <regex>
 #include <tuple>
 
 #include "stiffpath/core/atomic_file.hpp"
@@ -14,41 +13,27 @@
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/core/units.hpp"
 #include "stiffpath/measurement/campaign_checks.hpp"
+#include "stiffpath/measurement/csv_columns.hpp"
 
 namespace stiffpath::measurement {
 
 namespace {
 
-// Character column of header field `index` (the header keeps no positions; names are unquoted).
-int header_column(const core::CsvReader& csv, std::size_t index) {
-  int column = 1;
-  for (std::size_t i = 0; i < index; ++i) column += static_cast<int>(csv.header()[i].size()) + 1;
-  return column;
-}
-
 // Rejects columns that carry a quantity we read in a unit we do not read (Ux_in, force_lbf, x_m).
 void check_units(const core::CsvReader& csv, int header_line) {
-  static const std::regex pattern(R"(^(Ux|Uy|Uz|Lx|Ly|Lz|x|y|force)_(.+)$)");
+  for (const char* q : {"Ux", "Uy", "Uz", "Lx", "Ly", "Lz", "x", "y"}) require_unit(csv, header_line, q, "mm");
   for (std::size_t i = 0; i < csv.header().size(); ++i) {
     const std::string& name = csv.header()[i];
-    std::smatch m;
-    if (!std::regex_match(name, m, pattern)) continue;
-    const std::string quantity = m[1], unit = m[2];
-    const bool ok = quantity == "force" ? (unit == "kgf" || unit == "N") : unit == "mm";
-    if (!ok) {
+    if (name.starts_with("force_") && name != "force_kgf" && name != "force_N") {
       throw Error(SourceLocation{csv.label(), header_line, header_column(csv, i)},
-                  fmt::format("column '{}': unit '{}' is not supported, use {}", name, unit,
-                              quantity == "force" ? "force_kgf or force_N" : quantity + "_mm"));
+                  fmt::format("column '{}': unit '{}' is not supported, use force_kgf or force_N", name,
+                              name.substr(6)));
     }
   }
 }
 
 std::size_t require(const core::CsvReader& csv, const char* name, int header_line) {
-  if (auto index = csv.find_column(name)) return *index;
-  std::string have;
-  for (const auto& h : csv.header()) have += (have.empty() ? "" : ",") + h;
-  throw Error(SourceLocation{csv.label(), header_line, 1},
-              fmt::format("missing column '{}' (header: {}; expected {})", name, have, kCampaignColumns));
+  return require_column(csv, name, header_line, kCampaignColumns);
 }
 
 ForceDirection direction_cell(const core::CsvReader& csv, std::size_t col) {
@@ -57,7 +42,7 @@ ForceDirection direction_cell(const core::CsvReader& csv, std::size_t col) {
   if (t == "-x") return ForceDirection::minus_x;
   if (t == "+y" || t == "y") return ForceDirection::plus_y;
   if (t == "-y") return ForceDirection::minus_y;
-  csv.fail(col, "'" + std::string(t) + "' is not a force direction (+x, -x, +y, -y)");
+  csv.fail(col, fmt::format("'{}' is not a force direction (+x, -x, +y, -y)", t));
 }
 
 int non_negative_int(const core::CsvReader& csv, std::size_t col, long minimum) {

@@ -56,7 +56,7 @@ ForceDirection parse_direction(const core::CsvReader& csv, std::size_t col) {
   if (text == "-x") return ForceDirection::minus_x;
   if (text == "+y" || text == "y") return ForceDirection::plus_y;
   if (text == "-y") return ForceDirection::minus_y;
-  csv.fail(col, "'" + std::string(text) + "' is not a force direction (+x, -x, +y, -y)");
+  csv.fail(col, fmt::format("'{}' is not a force direction (+x, -x, +y, -y)", text));
 }
 
 std::optional<double> scaled(const core::CsvReader& csv, std::size_t col, double factor) {

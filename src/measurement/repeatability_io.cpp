@@ -1,7 +1,6 @@
 // Reading positioning-trial files (thesis table 3.2 format, optionally bidirectional) with located errors.
 #include <fmt/format.h>
 
-#include <regex>
 #include <set>
 #include <sstream>
 #include <tuple>
@@ -10,25 +9,14 @@
 #include "stiffpath/core/embedded.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/core/units.hpp"
+#include "stiffpath/measurement/csv_columns.hpp"
 #include "stiffpath/measurement/repeatability.hpp"
 
 namespace stiffpath::measurement {
 
 namespace {
 
-void check_units(const core::CsvReader& csv, int header_line) {
-  static const std::regex pattern(R"(^(err_x|err_y|err_z|x|y)_(.+)$)");
-  int column = 1;
-  for (const auto& name : csv.header()) {
-    std::smatch m;
-    if (std::regex_match(name, m, pattern) && m[2] != "mm") {
-      throw Error(SourceLocation{csv.label(), header_line, column},
-                  fmt::format("column '{}': unit '{}' is not supported, use {}_mm", name, std::string(m[2]),
-                              std::string(m[1])));
-    }
-    column += static_cast<int>(name.size()) + 1;
-  }
-}
+constexpr const char* kTrialColumns = "[mechanism,]point,x_mm,y_mm,trial,[approach,]err_x_mm,err_y_mm[,err_z_mm]";
 
 std::optional<double> mm(const core::CsvReader& csv, std::optional<std::size_t> col) {
   if (!col) return std::nullopt;
@@ -38,10 +26,11 @@ std::optional<double> mm(const core::CsvReader& csv, std::optional<std::size_t> 
 
 std::vector<PositioningTrial> read(core::CsvReader& csv) {
   const int header_line = csv.line();
-  check_units(csv, header_line);
+  for (const char* q : {"err_x", "err_y", "err_z", "x", "y"}) require_unit(csv, header_line, q, "mm");
+  auto column = [&](const char* name) { return require_column(csv, name, header_line, kTrialColumns); };
   const auto c_mech = csv.find_column("mechanism"), c_appr = csv.find_column("approach");
-  const auto c_point = csv.column("point"), c_x = csv.column("x_mm"), c_y = csv.column("y_mm");
-  const auto c_trial = csv.column("trial"), c_ex = csv.column("err_x_mm"), c_ey = csv.column("err_y_mm");
+  const auto c_point = column("point"), c_x = column("x_mm"), c_y = column("y_mm");
+  const auto c_trial = column("trial"), c_ex = column("err_x_mm"), c_ey = column("err_y_mm");
   const auto c_ez = csv.find_column("err_z_mm");
   std::vector<PositioningTrial> out;
   std::set<std::tuple<std::string, std::string, int, int>> seen;
@@ -63,7 +52,7 @@ std::vector<PositioningTrial> read(core::CsvReader& csv) {
       } else if (a == "-" || a == "-1") {
         t.approach = -1;
       } else {
-        csv.fail(*c_appr, "'" + std::string(a) + "' is not an approach direction (+ or -)");
+        csv.fail(*c_appr, fmt::format("'{}' is not an approach direction (+ or -)", a));
       }
     }
     t.err_x_m = mm(csv, c_ex);

@@ -120,7 +120,9 @@ std::string error_of(const std::string& text) {
 TEST(RepeatabilityErrors, BadFilesNameLineAndColumn) {
   const std::string h = "point,x_mm,y_mm,trial,err_x_mm,err_y_mm\n";
   EXPECT_EQ(error_of(h + "P,1,2,1,0.1,0.2\nP,1,2,2,0.1,0.3\n"), "no error");
-  EXPECT_NE(error_of("point,x_mm,y_mm,trial,err_x_mm\nP,1,2,1,0.1\n").find("t.csv:1: missing column 'err_y_mm'"),
+  EXPECT_NE(error_of("point,x_mm,y_mm,trial,err_x_mm\nP,1,2,1,0.1\n").find("t.csv:1:1: missing column 'err_y_mm'"),
+            std::string::npos);
+  EXPECT_NE(error_of("# comment first\npoint,x_mm,y_mm,trial,err_y_mm\n").find("t.csv:2:1: missing column 'err_x_mm'"),
             std::string::npos);
   EXPECT_NE(error_of("point,x_mm,y_mm,trial,err_x_um,err_y_mm\nP,1,2,1,0.1,0.2\n")
                 .find("t.csv:1:23: column 'err_x_um': unit 'um' is not supported, use err_x_mm"),
