@@ -15,6 +15,10 @@ void add_predict_command(CLI::App& app);
 void add_cv_command(CLI::App& app);
 void add_plot_command(CLI::App& app);
 void add_plan_command(CLI::App& app);
+void add_measure_command(CLI::App& app);
+void add_campaign_command(CLI::App& app);
+void add_data_command(CLI::App& app);
+void add_repeatability_command(CLI::App& app);
 
 //! Prints a JSON document on stdout (two-space indent, newline).
 void print_json(const nlohmann::json& document);

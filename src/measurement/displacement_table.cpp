@@ -56,12 +56,30 @@ ForceDirection parse_direction(const core::CsvReader& csv, std::size_t col) {
   if (text == "-x") return ForceDirection::minus_x;
   if (text == "+y" || text == "y") return ForceDirection::plus_y;
   if (text == "-y") return ForceDirection::minus_y;
-  csv.fail(col, "'" + std::string(text) + "' is not a force direction (+x, -x, +y, -y)");
+  csv.fail(col, fmt::format("'{}' is not a force direction (+x, -x, +y, -y)", text));
 }
 
 std::optional<double> scaled(const core::CsvReader& csv, std::size_t col, double factor) {
   const auto value = csv.optional_number(col);
   return value ? std::optional<double>(*value * factor) : std::nullopt;
+}
+
+ReadingSpread read_spread(const core::CsvReader& csv, std::size_t c_readings) {
+  ReadingSpread s;
+  const long n = csv.integer(c_readings);
+  if (n < 2) csv.fail(c_readings, fmt::format("a spread needs 2 or more readings, got {}", n));
+  s.readings = static_cast<int>(n);
+  const double mm = 1e-3, deg = units::deg_to_rad(1.0);
+  const std::pair<const char*, double*> fields[] = {{"dx_sd_mm", &s.dx_m}, {"dy_sd_mm", &s.dy_m},
+                                                    {"dz_sd_mm", &s.dz_m}, {"rx_sd_deg", &s.rx_rad},
+                                                    {"ry_sd_deg", &s.ry_rad}};
+  for (const auto& [name, target] : fields) {
+    const auto col = csv.column(name);
+    const double v = csv.number(col);
+    if (v < 0.0) csv.fail(col, fmt::format("a standard deviation cannot be negative, got {}", v));
+    *target = v * (name[0] == 'r' ? deg : mm);
+  }
+  return s;
 }
 
 DisplacementTable read_table(core::CsvReader& csv, const std::string& source) {
@@ -71,6 +89,7 @@ DisplacementTable read_table(core::CsvReader& csv, const std::string& source) {
   const auto c_dx = csv.column("dx_mm"), c_dy = csv.column("dy_mm"), c_dz = csv.column("dz_mm");
   const auto c_rx = csv.column("rx_deg"), c_ry = csv.column("ry_deg");
 
+  const auto c_readings = csv.find_column("readings");
   DisplacementTable table{source, {}};
   std::set<std::tuple<std::string, int, std::string, int>> seen;
   while (csv.next()) {
@@ -95,6 +114,7 @@ DisplacementTable read_table(core::CsvReader& csv, const std::string& source) {
     row.dz_m = scaled(csv, c_dz, 1e-3);
     row.rx_rad = scaled(csv, c_rx, units::deg_to_rad(1.0));
     row.ry_rad = scaled(csv, c_ry, units::deg_to_rad(1.0));
+    if (c_readings && !csv.text(*c_readings).empty()) row.spread = read_spread(csv, *c_readings);
     const auto key = std::make_tuple(row.mechanism, static_cast<int>(row.direction), row.point, row.step);
     if (!seen.insert(key).second) {
       throw Error(csv.where(),
@@ -127,13 +147,24 @@ DisplacementTable load_displacement_table(const std::string& path) {
 void save_displacement_table(const DisplacementTable& table, const std::string& path) {
   core::AtomicFile file(path);
   auto& out = file.stream();
-  out << kDisplacementColumns << '\n';
+  const bool with_spread =
+      std::any_of(table.rows.begin(), table.rows.end(), [](const DisplacementRow& r) { return r.spread.has_value(); });
+  out << kDisplacementColumns << (with_spread ? std::string(",") + kSpreadColumns : std::string()) << '\n';
   for (const auto& r : table.rows) {
-    out << fmt::format("{},{},{},{:.3f},{:.3f},{},{:.4f},{:.4f},{:.4f},{},{},{},{},{}\n", r.mechanism,
+    out << fmt::format("{},{},{},{:.3f},{:.3f},{},{:.4f},{:.4f},{:.4f},{},{},{},{},{}", r.mechanism,
                        to_string(r.direction), r.point, units::m_to_mm(r.x_m), units::m_to_mm(r.y_m), r.step,
                        r.force_kgf, r.force_N, r.nominal_force_N, cell(r.dx_m, 1e3, 6), cell(r.dy_m, 1e3, 6),
                        cell(r.dz_m, 1e3, 6), cell(r.rx_rad, units::rad_to_deg(1.0), 6),
                        cell(r.ry_rad, units::rad_to_deg(1.0), 6));
+    if (with_spread && r.spread) {
+      const auto& s = *r.spread;
+      out << fmt::format(",{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f}", s.readings, units::m_to_mm(s.dx_m),
+                         units::m_to_mm(s.dy_m), units::m_to_mm(s.dz_m), units::rad_to_deg(s.rx_rad),
+                         units::rad_to_deg(s.ry_rad));
+    } else if (with_spread) {
+      out << ",,,,,,";
+    }
+    out << '\n';
   }
   file.commit();
 }

@@ -17,6 +17,14 @@ const char* to_string(ForceDirection direction) noexcept;
 double direction_x(ForceDirection direction) noexcept;
 double direction_y(ForceDirection direction) noexcept;
 
+//! Spread of repeated CMM readings at one load step (sample standard deviations of the readings of G
+//! and of the tilt angles about their mean; present only when the step was read two or more times).
+struct ReadingSpread {
+  int readings = 0;                      //!< number of readings averaged (≥ 2)
+  double dx_m = 0.0, dy_m = 0.0, dz_m = 0.0;
+  double rx_rad = 0.0, ry_rad = 0.0;
+};
+
 //! One measurement. Displacements are of the CG point G relative to load step 0 (eq. 2.3). A missing
 //! cell (garbled in the seed, or not measured) is nullopt. All SI.
 struct DisplacementRow {
@@ -30,6 +38,7 @@ struct DisplacementRow {
   double nominal_force_N = 0.0;          //!< the thesis's rounded value (50 … 250 N)
   std::optional<double> dx_m, dy_m, dz_m;
   std::optional<double> rx_rad, ry_rad;  //!< angular deflections about x and y
+  std::optional<ReadingSpread> spread;   //!< from campaign processing with repeated readings
   int line = 0;                          //!< source line, for errors
 };
 
@@ -45,16 +54,20 @@ struct DisplacementTable {
 };
 
 //! CSV columns, in order: mechanism,direction,point,x_mm,y_mm,step,force_kgf,F_N,F_nominal_N,
-//! dx_mm,dy_mm,dz_mm,rx_deg,ry_deg. Empty cells are missing values.
+//! dx_mm,dy_mm,dz_mm,rx_deg,ry_deg. Empty cells are missing values. Tables with repeated readings carry
+//! kSpreadColumns after these (readings,dx_sd_mm,…); readers that do not know them ignore them.
 inline constexpr const char* kDisplacementColumns =
     "mechanism,direction,point,x_mm,y_mm,step,force_kgf,F_N,F_nominal_N,dx_mm,dy_mm,dz_mm,rx_deg,ry_deg";
+
+//! Optional trailing columns holding ReadingSpread (empty when a row has a single reading).
+inline constexpr const char* kSpreadColumns = "readings,dx_sd_mm,dy_sd_mm,dz_sd_mm,rx_sd_deg,ry_sd_deg";
 
 //! Loads a table from a file, or the built-in thesis data set when `path` is "thesis". Validates every
 //! row (known mechanism and direction, step ≥ 1, finite numbers, no duplicated key) and throws
 //! stiffpath::Error naming file, line and column.
 DisplacementTable load_displacement_table(const std::string& path);
 
-//! Writes a table in the same CSV format (atomically).
+//! Writes a table in the same CSV format (atomically); adds kSpreadColumns when any row has a spread.
 void save_displacement_table(const DisplacementTable& table, const std::string& path);
 
 }  // namespace stiffpath::measurement

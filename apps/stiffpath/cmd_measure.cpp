@@ -1,0 +1,95 @@
+// `stiffpath measure CAMPAIGN.csv -o table.csv`: process raw CMM readings into the tidy displacement table.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "commands.hpp"
+#include "stiffpath/core/units.hpp"
+#include "stiffpath/kinematics/mechanism_spec.hpp"
+#include "stiffpath/measurement/campaign.hpp"
+#include "stiffpath/measurement/process_campaign.hpp"
+
+namespace stiffpath::cli {
+
+namespace {
+struct MeasureOptions {
+  std::string campaign;
+  std::string mechanism = "oc-gu";
+  std::string output;
+  bool nominal_forces = false;
+  double nominal_step_N = 50.0;
+  bool json = false;
+};
+
+void run(const MeasureOptions& o) {
+  const auto spec = kinematics::load_mechanism(o.mechanism);
+  const auto campaign = measurement::load_campaign(o.campaign);
+  measurement::ProcessOptions p;
+  p.mechanism = spec.build;
+  p.geometry = {spec.ug_m, spec.ul_m};
+  p.force_basis = o.nominal_forces ? measurement::ForceBasis::nominal : measurement::ForceBasis::measured;
+  p.nominal_step_N = o.nominal_step_N;
+  const auto table = measurement::process_campaign(campaign, p);
+  measurement::save_displacement_table(table, o.output);
+
+  double max_total = 0.0, max_sd = 0.0;
+  std::string max_where;
+  int with_spread = 0;
+  for (const auto& r : table.rows) {
+    const double total = std::sqrt(*r.dx_m * *r.dx_m + *r.dy_m * *r.dy_m + *r.dz_m * *r.dz_m);
+    if (total > max_total) {
+      max_total = total;
+      max_where = fmt::format("{} {} step {}", r.point, measurement::to_string(r.direction), r.step);
+    }
+    if (r.spread) {
+      ++with_spread;
+      max_sd = std::max({max_sd, r.spread->dx_m, r.spread->dy_m, r.spread->dz_m});
+    }
+  }
+  const nlohmann::json summary = {
+      {"campaign", o.campaign},
+      {"output", o.output},
+      {"mechanism", spec.name},
+      {"build", spec.build},
+      {"ug_mm", tidy(units::m_to_mm(spec.ug_m))},
+      {"ul_mm", tidy(units::m_to_mm(spec.ul_m))},
+      {"force_basis", o.nominal_forces ? "nominal" : "measured"},
+      {"readings", campaign.readings.size()},
+      {"rows", table.rows.size()},
+      {"rows_with_spread", with_spread},
+      {"max_total_displacement_mm", tidy(units::m_to_mm(max_total))},
+      {"max_total_displacement_at", max_where},
+      {"max_reading_sd_um", tidy(units::m_to_um(max_sd))}};
+  if (o.json) {
+    print_json(summary);
+    return;
+  }
+  fmt::print("{} readings -> {} rows ({} {}, G = U + {:.0f}/{:.0f} UL, forces {})\n", campaign.readings.size(),
+             table.rows.size(), spec.name, spec.build, units::m_to_mm(spec.ug_m), units::m_to_mm(spec.ul_m),
+             o.nominal_forces ? "nominal 50 N steps" : "measured, relative to step 0");
+  fmt::print("largest total displacement {:.4f} mm at {}\n", units::m_to_mm(max_total), max_where);
+  if (with_spread > 0) {
+    fmt::print("{} rows averaged repeated readings; largest reading SD {:.1f} um\n", with_spread,
+               units::m_to_um(max_sd));
+  }
+  fmt::print("wrote {}\n", o.output);
+}
+}  // namespace
+
+void add_measure_command(CLI::App& app) {
+  auto opts = std::make_shared<MeasureOptions>();
+  auto* cmd = app.add_subcommand("measure", "Process a raw CMM campaign (U, L readings) into a displacement table");
+  cmd->add_option("campaign", opts->campaign, "Campaign CSV (see docs/measurement.md)")->required();
+  cmd->add_option("--mechanism", opts->mechanism, "Preset or JSON file: |UG|, |UL| and the build label")
+      ->capture_default_str();
+  cmd->add_option("-o,--output", opts->output, "Displacement table CSV to write")->required();
+  cmd->add_flag("--nominal-forces", opts->nominal_forces,
+                "Write F_N as step x nominal step (50 ... 250 N) as the thesis did, not the measured kgf");
+  cmd->add_option("--nominal-step-N", opts->nominal_step_N, "Nominal force per load step (N)")->capture_default_str();
+  cmd->add_flag("--json", opts->json, "Print a JSON summary");
+  cmd->callback([opts] { run(*opts); });
+}
+
+}  // namespace stiffpath::cli
