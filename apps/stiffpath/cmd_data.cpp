@@ -32,7 +32,7 @@ nlohmann::json to_json(const DataCheckReport& r) {
     lin.push_back({{"mechanism", l.mechanism}, {"direction", to_string(l.direction)}, {"point", l.point},
                    {"quantity", to_string(l.quantity)}, {"n", l.fit.n},
                    {"slope_" + u + "_per_N", tidy(display(l.quantity, l.fit.slope))},
-                   {"intercept_" + u, tidy(display(l.quantity, l.fit.intercept))}, {"r2", tidy(l.fit.r2)},
+                   {"intercept_" + u, tidy(display(l.quantity, l.fit.intercept))}, {"r2", tidy(l.fit.r_squared)},
                    {"max_residual_" + u, tidy(display(l.quantity, l.fit.max_residual))},
                    {"tolerance_" + u, tidy(display(l.quantity, l.tolerance))}, {"flagged", l.flagged}});
   }
@@ -99,7 +99,7 @@ void print_text(const DataCheckReport& r) {
              per_mechanism(r.linearity));
   list_flagged(r.linearity, [](const LinearityResult& l) {
     fmt::print("    {} {} {} {}: R2 {:.3f}, max residual {:.4f} {} > {:.4f}\n", l.mechanism, to_string(l.direction),
-               l.point, to_string(l.quantity), l.fit.r2, display(l.quantity, l.fit.max_residual), unit(l.quantity),
+               l.point, to_string(l.quantity), l.fit.r_squared, display(l.quantity, l.fit.max_residual), unit(l.quantity),
                display(l.quantity, l.tolerance));
   });
   fmt::print("  symmetry about y = 0 (|cell - mirrored partner| > 2 x accuracy): {}\n", per_mechanism(r.symmetry));

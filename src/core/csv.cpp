@@ -22,11 +22,13 @@ CsvReader::CsvReader(const std::string& path)
   if (!*owned_) throw Error(SourceLocation{path}, "cannot open file");
   std::vector<int> starts;
   if (!read_record(header_, starts)) throw Error(SourceLocation{path}, "file is empty (no header line)");
+  header_line_ = line_;
 }
 
 CsvReader::CsvReader(std::istream& in, std::string label) : in_(&in), label_(std::move(label)) {
   std::vector<int> starts;
   if (!read_record(header_, starts)) throw Error(SourceLocation{label_}, "input is empty (no header line)");
+  header_line_ = line_;
 }
 
 bool CsvReader::read_record(std::vector<std::string>& fields, std::vector<int>& starts) {
@@ -86,7 +88,7 @@ std::size_t CsvReader::column(std::string_view name) const {
   if (auto index = find_column(name)) return *index;
   std::string have;
   for (const auto& h : header_) have += (have.empty() ? "" : ", ") + h;
-  throw Error(SourceLocation{label_, 1}, "missing column '" + std::string(name) + "' (header has: " + have + ")");
+  throw Error(SourceLocation{label_, header_line_}, "missing column '" + std::string(name) + "' (header has: " + have + ")");
 }
 
 bool CsvReader::next() {

@@ -4,7 +4,7 @@
 #include <random>
 
 #include "stiffpath/compliance/grid_model.hpp"
-#include "stiffpath/compliance/line_fit.hpp"
+#include "stiffpath/core/line_fit.hpp"
 #include "stiffpath/compliance/point_fit.hpp"
 #include "stiffpath/core/error.hpp"
 #include "synthetic_table.hpp"

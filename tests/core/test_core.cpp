@@ -42,6 +42,14 @@ TEST(Csv, ErrorsNameFileLineColumnAndValue) {
     EXPECT_STREQ(e.what(), "f.csv:3:3: column 'b': 'nan' is not a finite number");
   }
   EXPECT_THROW((void)csv.column("c"), Error);
+  std::istringstream commented("# a comment\n\nx,y\n1,2\n");
+  CsvReader with_comment(commented, "h.csv");
+  try {
+    (void)with_comment.column("z");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.where().line, 3);  // the header's own line, after the comment and the blank line
+  }
   std::istringstream ragged("a,b\n1\n");
   CsvReader r(ragged, "g.csv");
   try {

@@ -15,7 +15,7 @@ TEST(LineFit, HandComputed) {
   EXPECT_EQ(f.n, 3);
   EXPECT_NEAR(f.slope, 1.5, 1e-15);
   EXPECT_NEAR(f.intercept, -2.0 / 3.0, 1e-15);
-  EXPECT_NEAR(f.r2, 1.0 - 9.0 / 252.0, 1e-15);
+  EXPECT_NEAR(f.r_squared, 1.0 - 9.0 / 252.0, 1e-15);
   EXPECT_NEAR(f.max_residual, 1.0 / 3.0, 1e-15);
   EXPECT_NEAR(f.rms_residual, std::sqrt(1.0 / 18.0), 1e-15);
   EXPECT_NEAR(slope_through_origin(x, y), 17.0 / 14.0, 1e-15);

@@ -5,12 +5,14 @@
 #include <string>
 #include <vector>
 
-#include "stiffpath/compliance/line_fit.hpp"
+#include "stiffpath/core/line_fit.hpp"
 #include "stiffpath/kinematics/types.hpp"
 #include "stiffpath/measurement/displacement_table.hpp"
 
 namespace stiffpath::compliance {
 
+using core::fit_line;
+using core::LineFit;
 using kinematics::Mat2;
 using kinematics::Vec2;
 

@@ -60,6 +60,7 @@ class CsvReader {
   std::vector<int> starts_;  // 1-based character column of each field
   std::string buffer_;
   int line_ = 0;
+  int header_line_ = 1;  // after leading comments and blank lines
 };
 
 //! Parses a finite double from the whole of `text` (no trailing characters); nullopt otherwise.

@@ -8,9 +8,13 @@
 #include <vector>
 
 #include "stiffpath/measurement/displacement_table.hpp"
-#include "stiffpath/measurement/line_fit.hpp"
+#include "stiffpath/core/line_fit.hpp"
 
 namespace stiffpath::measurement {
+
+using core::fit_line;
+using core::LineFit;
+using core::slope_through_origin;
 
 //! The five measured quantities of a row.
 enum class Quantity { dx, dy, dz, rx, ry };

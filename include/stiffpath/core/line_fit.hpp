@@ -1,9 +1,9 @@
-// First-order least squares y = slope·x + intercept with standard errors and R² (eqs. 4.9–4.11).
+// Straight-line least squares y = slope·x + intercept with its statistics (thesis eqs. 4.9–4.11).
 #pragma once
 
 #include <span>
 
-namespace stiffpath::compliance {
+namespace stiffpath::core {
 
 //! Result of a straight-line least-squares fit.
 struct LineFit {
@@ -13,6 +13,7 @@ struct LineFit {
   double intercept_stderr = 0.0;
   double r_squared = 0.0;        //!< coefficient of determination (1 for a perfect fit)
   double rms_residual = 0.0;     //!< √(Σ residual² / n), in the unit of y
+  double max_residual = 0.0;     //!< max |residual|
   int n = 0;                     //!< points used
 };
 
@@ -20,4 +21,7 @@ struct LineFit {
 //! otherwise returns n < 2 (callers raise the error naming the point).
 LineFit fit_line(std::span<const double> x, std::span<const double> y) noexcept;
 
-}  // namespace stiffpath::compliance
+//! Least-squares slope of y ≈ slope·x through the origin (Σxy / Σx²); 0 when Σx² = 0.
+double slope_through_origin(std::span<const double> x, std::span<const double> y) noexcept;
+
+}  // namespace stiffpath::core

@@ -1,9 +1,11 @@
 // Closed-form straight-line least squares (the normal equations of eq. 4.11) with fit statistics.
-#include "stiffpath/compliance/line_fit.hpp"
+#include "stiffpath/core/line_fit.hpp"
+
+#include <algorithm>
 
 #include <cmath>
 
-namespace stiffpath::compliance {
+namespace stiffpath::core {
 
 LineFit fit_line(std::span<const double> x, std::span<const double> y) noexcept {
   LineFit fit;
@@ -36,6 +38,7 @@ LineFit fit_line(std::span<const double> x, std::span<const double> y) noexcept 
   for (std::size_t i = 0; i < n; ++i) {
     const double r = y[i] - (fit.slope * x[i] + fit.intercept);
     sse += r * r;
+    fit.max_residual = std::max(fit.max_residual, std::abs(r));
   }
   fit.rms_residual = std::sqrt(sse / static_cast<double>(n));
   fit.r_squared = syy > 0.0 ? 1.0 - sse / syy : 1.0;
@@ -47,4 +50,13 @@ LineFit fit_line(std::span<const double> x, std::span<const double> y) noexcept 
   return fit;
 }
 
-}  // namespace stiffpath::compliance
+double slope_through_origin(std::span<const double> x, std::span<const double> y) noexcept {
+  double sxy = 0.0, sxx = 0.0;
+  for (std::size_t i = 0; i < std::min(x.size(), y.size()); ++i) {
+    sxy += x[i] * y[i];
+    sxx += x[i] * x[i];
+  }
+  return sxx > 0.0 ? sxy / sxx : 0.0;
+}
+
+}  // namespace stiffpath::core
