@@ -15,6 +15,7 @@ void add_predict_command(CLI::App& app);
 void add_cv_command(CLI::App& app);
 void add_plot_command(CLI::App& app);
 void add_plan_command(CLI::App& app);
+void add_run_command(CLI::App& app);
 void add_measure_command(CLI::App& app);
 void add_campaign_command(CLI::App& app);
 void add_data_command(CLI::App& app);

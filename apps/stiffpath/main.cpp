@@ -38,6 +38,7 @@ int main(int argc, char** argv) {
   stiffpath::cli::add_cv_command(app);
   stiffpath::cli::add_plot_command(app);
   stiffpath::cli::add_plan_command(app);
+  stiffpath::cli::add_run_command(app);
   stiffpath::cli::add_measure_command(app);
   stiffpath::cli::add_campaign_command(app);
   stiffpath::cli::add_data_command(app);

@@ -1,0 +1,131 @@
+// `stiffpath run`: the main job — G-code to compensated joint commands at 2 kHz (thesis fig. 4.3).
+#include <unistd.h>
+
+#include <cstdio>
+#include <fmt/format.h>
+#include <fstream>
+#include <memory>
+
+#include "commands.hpp"
+#include "motion_flags.hpp"
+#include "stiffpath/compensation/job.hpp"
+#include "stiffpath/compliance/model_factory.hpp"
+#include "stiffpath/core/error.hpp"
+#include "stiffpath/core/units.hpp"
+
+namespace stiffpath::cli {
+
+namespace {
+struct RunArgs {
+  std::string job;
+  std::string mechanism = "oc-gu";
+  std::string model;  // default: the mechanism's built-in thesis model
+  bool no_compensation = false;
+  double gain = 1.0;
+  std::string accel_source = "analytic";
+  std::string outside;
+  std::string output;
+  std::string format = "csv";
+  bool json = false;
+  MotionFlags motion;
+};
+
+int count_lines(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  int lines = 0;
+  char buffer[1 << 16];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    for (std::streamsize i = 0; i < in.gcount(); ++i) lines += buffer[i] == '\n';
+  }
+  return lines;
+}
+
+// A progress bar on stderr for long jobs when stderr is a terminal.
+compensation::Progress progress_bar(const std::string& job) {
+  if (!::isatty(2)) return {};
+  const int total = count_lines(job);
+  if (total < 2000) return {};
+  return [total](std::uint64_t samples, int line) {
+    const double f = std::min(1.0, static_cast<double>(line) / total);
+    const int filled = static_cast<int>(f * 30);
+    std::fprintf(stderr, "\r[%-30s] %3.0f%%  line %d/%d  %.1f M samples", std::string(static_cast<std::size_t>(filled), '#').c_str(),
+                 f * 100, line, total, static_cast<double>(samples) / 1e6);
+  };
+}
+
+void run(const RunArgs& a) {
+  const auto spec = kinematics::load_mechanism(a.mechanism);
+  const std::string model_name = a.model.empty() ? (spec.build == "OC" ? "thesis-oc" : "thesis-sc") : a.model;
+  auto loaded = compliance::load_model(model_name);
+  if (!a.outside.empty()) loaded.model->set_outside_policy(compliance::parse_outside_policy(a.outside));
+  const std::shared_ptr<const compliance::Model> model(loaded.model.release());
+  const compensation::Compensator compensator(spec, model, {a.gain, !a.no_compensation, true});
+  const motion::PlanOptions options = plan_options(a.motion);
+  const auto acceleration = compensation::parse_acceleration_source(a.accel_source);
+
+  motion::TrajectoryStream stream(a.job, options);
+  std::unique_ptr<compensation::JointWriter> writer;
+  if (!a.output.empty()) {
+    writer = compensation::make_joint_writer(compensation::parse_output_format(a.format), a.output, options.rate_hz,
+                                             spec.name);
+  }
+  const auto progress = progress_bar(a.job);
+  const compensation::JobSummary s =
+      compensation::run_job(stream, compensator, writer.get(), a.job, options.rate_hz, acceleration, progress);
+  if (progress) std::fprintf(stderr, "\n");
+
+  const bool compensating = !a.no_compensation && a.gain != 0.0;
+  if (a.json) {
+    print_json({{"job", a.job},
+                {"mechanism", spec.name},
+                {"model", model_name},
+                {"compensation", compensating},
+                {"gain", a.no_compensation ? 0.0 : a.gain},
+                {"acceleration_source", a.accel_source},
+                {"duration_s", tidy(s.duration_s)},
+                {"samples", s.samples},
+                {"rate_hz", tidy(options.rate_hz)},
+                {"peak_deflection_um", tidy(units::m_to_um(s.peak_deflection_m))},
+                {"peak_correction_um", tidy(units::m_to_um(s.peak_correction_m))},
+                {"peak_force_n", tidy(s.peak_force_N)},
+                {"peak_joint_velocity_rad_s", tidy(s.peak_joint_velocity_rad_s)},
+                {"peak_joint_acceleration_rad_s2", tidy(s.peak_joint_acceleration_rad_s2)},
+                {"samples_outside_grid", s.samples_outside_grid},
+                {"output", a.output.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.output)}});
+    return;
+  }
+  fmt::print("{}: {} on {} with {}{}\n", a.job, compensating ? "compensated" : "not compensated", spec.name,
+             model_name, compensating && a.gain != 1.0 ? fmt::format(" (gain {:g})", a.gain) : "");
+  fmt::print("  {} samples at {:g} Hz, duration {:.4f} s\n", s.samples, options.rate_hz, s.duration_s);
+  fmt::print("  peak D'Alembert force {:.1f} N, predicted deflection {:.1f} um, correction {:.1f} um\n", s.peak_force_N,
+             units::m_to_um(s.peak_deflection_m), units::m_to_um(s.peak_correction_m));
+  fmt::print("  peak joint velocity {:.2f} rad/s, acceleration {:.1f} rad/s^2\n", s.peak_joint_velocity_rad_s,
+             s.peak_joint_acceleration_rad_s2);
+  if (s.samples_outside_grid > 0) {
+    fmt::print("  {} samples outside the compliance model's grid ({})\n", s.samples_outside_grid,
+               compliance::to_string(model->outside_policy()));
+  }
+  if (!a.output.empty()) fmt::print("  wrote {}\n", a.output);
+}
+}  // namespace
+
+void add_run_command(CLI::App& app) {
+  auto a = std::make_shared<RunArgs>();
+  auto* cmd = app.add_subcommand("run", "The main job: G-code -> compliance-compensated joint commands (fig. 4.3)");
+  cmd->add_option("job", a->job, "G-code program")->required();
+  cmd->add_option("--mechanism", a->mechanism, "Preset (oc-gu, oc-gl, sc-gu, sc-gl) or JSON file")->capture_default_str();
+  cmd->add_option("--model", a->model, "Compliance model file or built-in (default: thesis-oc / thesis-sc)");
+  cmd->add_flag("--no-compensation", a->no_compensation, "Plan and convert to joints without correcting");
+  cmd->add_option("--gain", a->gain, "Compensation gain k in p_cmd = p - k*delta")->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--accel-source", a->accel_source, "analytic (profile) or numeric (thesis: 2nd difference)")
+      ->capture_default_str();
+  cmd->add_option("--outside", a->outside, "Outside the model's grid: clamp, extrapolate or error (default: model's)");
+  cmd->add_option("-o,--output", a->output, "Joint trajectory file (written atomically)");
+  cmd->add_option("--format", a->format, "csv or bin")->capture_default_str();
+  cmd->add_flag("--json", a->json, "Print the summary as JSON");
+  add_motion_flags(cmd, a->motion);
+  cmd->callback([a] { run(*a); });
+}
+
+}  // namespace stiffpath::cli
