@@ -11,6 +11,8 @@ GcodeReader::GcodeReader(const std::filesystem::path& path, GcodeOptions options
       label_(path.string()),
       interpreter_(std::make_unique<GcodeInterpreter>(options)),
       where_{label_, 0, 0} {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw Error(SourceLocation{label_}, "is a directory, not a G-code file");
   if (!*owned_) throw Error(SourceLocation{label_}, "cannot open G-code file");
 }
 
