@@ -7,9 +7,14 @@ circles with I), a spiral logo flattened to 0.2-0.6 mm chords, and a hatched lab
 short chords (thousands of segments), a bore (full circle), a keyway (lines + arcs) and a bolt
 circle of six holes. Everything stays inside the thesis's workspace x 172.132..272.132 mm,
 y -75..75 mm. Run: python3 examples/make_marking_jobs.py (rewrites both files).
+
+python3 examples/make_marking_jobs.py --long 100000 /tmp/long.gcode writes a long job instead (the
+nameplate's and the gear's bodies repeated until the program has that many lines), for measuring
+planning time and memory on a 100 000-line program.
 """
 import math
 import os
+import sys
 
 CX, CY = 222.132, 0.0
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -89,6 +94,21 @@ def gear():
     footer(out)
     return out
 
+
+def long_job(target):
+    body = [line for line in nameplate() + gear() if not line.startswith(("%", "M2"))]
+    out = ["( long job: nameplate and gear repeated )", "%"]
+    while len(out) < target - 2:
+        out += body[: target - 2 - len(out)]
+    return out + ["M5", "M2"]
+
+
+if len(sys.argv) == 4 and sys.argv[1] == "--long":
+    lines = long_job(int(sys.argv[2]))
+    with open(sys.argv[3], "w") as fh:
+        fh.write("\n".join(lines) + "\n")
+    print(f"{sys.argv[3]}: {len(lines)} lines")
+    sys.exit(0)
 
 for name, lines in (("nameplate.gcode", nameplate()), ("gear_outline.gcode", gear())):
     with open(os.path.join(HERE, name), "w") as fh:

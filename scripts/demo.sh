@@ -11,3 +11,6 @@ echo "== inverse kinematics on the thesis's 3 x 5 measurement grid (eq. 2.2), ch
 echo
 echo "== mobility (eqs. 3.1-3.2)"
 "$stiffpath" mobility
+echo
+echo "== the thesis's y motion (fig. 4.7a) planned at 5 g, jerk-limited, sampled at 2 kHz (thesis 4.3)"
+"$stiffpath" plan examples/y_motion.gcode

@@ -69,15 +69,16 @@ void run_plan(const PlanArgs& a) {
                 {"output", a.output.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.output)}});
     return;
   }
-  fmt::print("{}: {} segments, {} samples at {:g} Hz, duration {:.6f} s\n", a.job, stream.segments(), summary.samples,
-             options.rate_hz, summary.duration_s);
+  fmt::print("{}: {} segment{}, {} samples at {:g} Hz, duration {:.6f} s\n", a.job, stream.segments(),
+             stream.segments() == 1 ? "" : "s", summary.samples, options.rate_hz, summary.duration_s);
   fmt::print("limits: v {:.1f} mm/s, a {:.3f} m/s^2 ({:.2f} g), j {:.1f} m/s^3\n", units::m_to_mm(options.limits.max_velocity_m_s),
              options.limits.max_acceleration_m_s2, options.limits.max_acceleration_m_s2 / units::standard_gravity_m_s2,
              options.limits.max_jerk_m_s3);
   fmt::print("peaks:  v {:.1f} mm/s, a {:.3f} m/s^2 ({:.2f} g), j {:.1f} m/s^3\n", units::m_to_mm(summary.peak_velocity_m_s),
              summary.peak_acceleration_m_s2, summary.peak_acceleration_m_s2 / units::standard_gravity_m_s2,
              summary.peak_jerk_m_s3);
-  fmt::print("laser on {:.4f} s; look-ahead held at most {} segments\n", summary.laser_on_s, planner.peak_window);
+  fmt::print("laser on {:.4f} s; the look-ahead held at most {} segment{}\n", summary.laser_on_s, planner.peak_window,
+             planner.peak_window == 1 ? "" : "s");
   if (!a.output.empty()) fmt::print("wrote {}\n", a.output);
 }
 

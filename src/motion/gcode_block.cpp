@@ -14,7 +14,7 @@ int code_tenths(double value) noexcept {
 }
 
 void GcodeBlock::fail(const GcodeWord& word, const std::string& message) const {
-  throw Error(SourceLocation{where.file, where.line, word.column}, word_name(word) + ": " + message);
+  throw Error(SourceLocation{where->file, where->line, word.column}, word_name(word) + ": " + message);
 }
 
 namespace {
@@ -80,7 +80,7 @@ void add_value(GcodeBlock& block, const GcodeWord*& slot, const GcodeWord& word)
 
 GcodeBlock parse_block(std::span<const GcodeWord> words, const SourceLocation& where) {
   GcodeBlock block;
-  block.where = where;
+  block.where = &where;
   for (const GcodeWord& word : words) {
     switch (word.letter) {
       case 'G': add_g(block, word); break;

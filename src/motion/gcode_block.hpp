@@ -28,7 +28,7 @@ struct GcodeBlock {
   const GcodeWord* f = nullptr;
   const GcodeWord* s = nullptr;
   const GcodeWord* p = nullptr;
-  SourceLocation where;  //!< file and line (column 0)
+  const SourceLocation* where = nullptr;  //!< file and line (column 0); outlives the block
 
   //! Throws Error at the word's column: "<word>: message".
   [[noreturn]] void fail(const GcodeWord& word, const std::string& message) const;

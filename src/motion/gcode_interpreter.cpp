@@ -85,7 +85,7 @@ std::optional<PathSegment> GcodeInterpreter::dwell(const GcodeBlock& b) {
   if (b.p->value < 0.0) b.fail(*b.p, "dwell time must not be negative");
   if (!position_m_ || b.p->value == 0.0) return std::nullopt;  // before the first move nothing is timed
   PathSegment segment = make_dwell(*position_m_, b.p->value);
-  decorate(segment, b.where.line);
+  decorate(segment, b.where->line);
   segment.laser_on = laser_ && power_ > 0.0;
   segment.mode = JunctionMode::exact_stop;
   return segment;
@@ -136,7 +136,7 @@ std::optional<PathSegment> GcodeInterpreter::move(const GcodeBlock& b, const Gco
   position_m_ = segment.end_m;
   segment.rapid = rapid;
   segment.feed_m_s = rapid ? std::numeric_limits<double>::infinity() : *feed_m_s_;
-  decorate(segment, b.where.line);
+  decorate(segment, b.where->line);
   return segment;
 }
 

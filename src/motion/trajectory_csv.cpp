@@ -2,6 +2,7 @@
 #include "stiffpath/motion/trajectory_csv.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <iterator>
 
@@ -23,11 +24,32 @@ namespace {
 
 constexpr std::size_t flush_bytes = 1 << 16;
 
-// A fixed-point number with `decimals` digits; values that round to zero print as 0 (never "-0.000").
+// A fixed-point number with `decimals` digits and a trailing comma, formatted from the integer
+// round(value·10^decimals) (several times faster than a floating-point format); values that round
+// to zero print as 0 (never "-0.000"). Magnitudes beyond 9e15 units fall back to fmt.
 void put(fmt::memory_buffer& buffer, double value, int decimals) {
-  static constexpr double half_unit[] = {0.5, 0.05, 0.005, 5e-4, 5e-5, 5e-6, 5e-7, 5e-8};
-  if (std::abs(value) < half_unit[decimals]) value = 0.0;
-  fmt::format_to(std::back_inserter(buffer), "{:.{}f},", value, decimals);
+  static constexpr double scale[] = {1.0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8};
+  static constexpr std::int64_t unit[] = {1, 10, 100, 1000, 10000, 100000, 1000000, 10000000, 100000000};
+  const double scaled = std::round(value * scale[decimals]);
+  if (!(std::abs(scaled) < 9e15)) {
+    fmt::format_to(std::back_inserter(buffer), "{:.{}f},", value, decimals);
+    return;
+  }
+  auto n = static_cast<std::int64_t>(scaled);
+  if (n < 0) {
+    buffer.push_back('-');
+    n = -n;
+  }
+  const fmt::format_int whole(n / unit[decimals]);
+  buffer.append(whole.data(), whole.data() + whole.size());
+  if (decimals > 0) {
+    buffer.push_back('.');
+    char digits[8];
+    std::int64_t fraction = n % unit[decimals];
+    for (int k = decimals - 1; k >= 0; --k, fraction /= 10) digits[k] = static_cast<char>('0' + fraction % 10);
+    buffer.append(digits, digits + decimals);
+  }
+  buffer.push_back(',');
 }
 
 }  // namespace

@@ -42,12 +42,18 @@ TEST(GcodeErrors, EveryMalformedProgramRaisesItsExpectedMessage) {
   EXPECT_GE(checked, 30);
 }
 
-TEST(GcodeErrors, MissingFileIsNamed) {
+TEST(GcodeErrors, MissingFileAndDirectoryAreNamed) {
   try {
     GcodeReader reader(fs::path("/nonexistent/job.gcode"));
     FAIL() << "no error";
   } catch (const Error& e) {
     EXPECT_STREQ(e.what(), "/nonexistent/job.gcode: cannot open G-code file");
+  }
+  try {
+    GcodeReader reader(fs::path(STIFFPATH_TEST_DATA_DIR) / "gcode_bad");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), (fs::path(STIFFPATH_TEST_DATA_DIR) / "gcode_bad").string() + ": is a directory, not a G-code file");
   }
 }
 

@@ -31,6 +31,35 @@ TEST(PlannerRandom, EveryProgramStaysWithinLimitsAndJoinsContinuously) {
   }
 }
 
+std::vector<PathSegment> programmed_segments(const std::string& gcode) {
+  std::istringstream in(gcode);
+  GcodeReader reader(in, "job.gcode");
+  std::vector<PathSegment> segs;
+  while (auto s = reader.next()) segs.push_back(*s);
+  return segs;
+}
+
+TEST(PlannerRandom, ExactStopProgramsPassEveryProgrammedPointAndEndAtRest) {
+  std::mt19937_64 rng(23);
+  for (int p = 0; p < std::max(4, test::random_cases(400) / 20); ++p) {
+    std::string gcode = test::random_program(rng, 60);
+    for (std::size_t at = gcode.find("G64"); at != std::string::npos; at = gcode.find("G64", at)) {
+      gcode.replace(at, gcode.find('\n', at) - at, "G61");  // no blending anywhere
+    }
+    const std::vector<PathSegment> programmed = programmed_segments(gcode);
+    const Trajectory trajectory = test::plan_text(gcode);
+    ASSERT_EQ(trajectory.segments().size(), programmed.size()) << "program " << p;
+    for (std::size_t i = 0; i < programmed.size(); ++i) {
+      const auto& seg = trajectory.segments()[i];
+      ASSERT_EQ(trajectory.evaluate(seg.end_time_s()).position_m, programmed[i].end_m) << "program " << p << " line " << seg.path.line;
+    }
+    const TrajectorySample last = trajectory.evaluate(trajectory.duration_s());
+    EXPECT_EQ(last.position_m, programmed.back().end_m);
+    EXPECT_EQ(last.velocity_m_s, Vec2::Zero());
+    EXPECT_EQ(last.acceleration_m_s2, Vec2::Zero());
+  }
+}
+
 // The reference: whole-program look-ahead written out plainly (all junction limits, a full backward
 // pass, a forward pass) on the same segments.
 std::vector<double> reference_junction_speeds(const std::string& gcode, const PlanOptions& options) {

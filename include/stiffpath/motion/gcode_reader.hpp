@@ -59,6 +59,7 @@ class GcodeReader final : public PathSource {
   std::istream* in_;
   std::string label_;
   std::unique_ptr<GcodeInterpreter> interpreter_;
+  SourceLocation where_;  // file and current line, for errors
   std::string text_;
   std::vector<GcodeWord> words_;
   int line_ = 0;

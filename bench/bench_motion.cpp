@@ -1,0 +1,146 @@
+// Benchmarks of the motion module: one profile solve, sampling, and planning a 100 000-line G-code program.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <fmt/format.h>
+#include <numbers>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "stiffpath/motion/profile.hpp"
+#include "stiffpath/motion/speed_change.hpp"
+#include "stiffpath/motion/trajectory_stream.hpp"
+
+namespace {
+using namespace stiffpath::motion;
+
+// Feasible random inputs; `shape` picks the peak-speed case the solver takes.
+std::vector<ProfileInput> profile_inputs(int shape) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<ProfileInput> inputs;
+  while (inputs.size() < 1024) {
+    ProfileInput in{0.0, 2.0 * unit(rng), 2.0 * unit(rng), 2.0, 49.03325, 9806.65};
+    const double least = speed_change(in.start_velocity_m_s, in.end_velocity_m_s, 49.03325, 9806.65).distance_m;
+    in.length_m = least + (shape == 0 ? 0.5 : shape == 1 ? 0.05 * unit(rng) : 1e-4 * unit(rng));
+    Profile p;
+    solve_profile(in, p);
+    const bool cruise = p.phase_s[3] > 0.0, plateaus = p.phase_s[1] > 0.0 && p.phase_s[5] > 0.0;
+    if ((shape == 0 && cruise) || (shape == 1 && !cruise && plateaus) || (shape == 2 && !cruise && !plateaus)) {
+      inputs.push_back(in);
+    }
+  }
+  return inputs;
+}
+
+void BM_SolveProfile(benchmark::State& state) {
+  const auto inputs = profile_inputs(static_cast<int>(state.range(0)));
+  Profile profile;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(solve_profile(inputs[i++ & 1023], profile));
+    benchmark::ClobberMemory();
+  }
+}
+// 0: cruise at the limit, 1: no cruise, both halves at the acceleration limit (quadratic),
+// 2: no cruise, a half below the acceleration limit (bracketed Newton).
+BENCHMARK(BM_SolveProfile)->Arg(0)->Arg(1)->Arg(2);
+
+void BM_ReachableSpeed(benchmark::State& state) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<double> lengths(1024), speeds(1024);
+  for (std::size_t k = 0; k < 1024; ++k) lengths[k] = 1e-4 + 0.1 * unit(rng), speeds[k] = 2.0 * unit(rng);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const std::size_t k = i++ & 1023;
+    benchmark::DoNotOptimize(reachable_speed(lengths[k], speeds[k], 49.03325, 9806.65));
+  }
+}
+BENCHMARK(BM_ReachableSpeed);
+
+// A CAM-like program: blocks of a circle flattened to 0.2 mm chords under G64, a slot with
+// tangent arcs, and hatch lines with G0 jumps, repeated until it has `lines` lines.
+std::string long_program(int lines) {
+  std::string g = "G21 G90 G17 G94\nG64 P0.01\nM4 S800\n";
+  int n = 3, block = 0;
+  while (n < lines) {
+    const double cx = 200.0 + 44.0 * ((block * 7) % 10) / 10.0, cy = -60.0 + 120.0 * ((block * 3) % 10) / 10.0;
+    const double r = 5.0 + (block % 5);
+    const int chords = static_cast<int>(2 * std::numbers::pi * r / 0.2);
+    g += fmt::format("G0 X{:.4f} Y{:.4f}\nG1 F9000\n", cx + r, cy);
+    for (int k = 1; k <= chords; ++k) {
+      const double t = 2 * std::numbers::pi * k / chords;
+      g += fmt::format("X{:.4f} Y{:.4f}\n", cx + r * std::cos(t), cy + r * std::sin(t));
+    }
+    g += fmt::format("G0 X{:.4f} Y{:.4f}\nG1 X{:.4f} F6000\nG3 X{:.4f} Y{:.4f} I0 J2\nG1 X{:.4f}\nG3 X{:.4f} Y{:.4f} I0 J-2\n",
+                     cx - 4, cy - 2, cx + 4, cx + 4, cy + 2, cx - 4, cx - 4, cy - 2);
+    for (int k = 0; k < 20; ++k) g += fmt::format("G0 X{:.4f} Y{:.4f}\nG1 X{:.4f} F30000\n", cx - 5, cy + 0.3 * k, cx + 5);
+    n += chords + 2 + 5 + 40;
+    ++block;
+  }
+  return g + "M5\nM2\n";
+}
+
+void BM_PlanProgram100kLines(benchmark::State& state) {
+  const std::string program = long_program(100000);
+  std::size_t segments = 0, window = 0;
+  for (auto _ : state) {
+    std::istringstream in(program);
+    GcodeReader reader(in, "long.gcode");
+    CornerBlender blender(reader, JunctionRules{}.corner_angle_rad);
+    Planner planner(blender, MotionLimits{});
+    segments = 0;
+    while (auto s = planner.next()) ++segments;
+    window = planner.statistics().peak_window;
+  }
+  state.counters["segments"] = static_cast<double>(segments);
+  state.counters["peak_window"] = static_cast<double>(window);
+  state.counters["ns_per_segment"] =
+      benchmark::Counter(static_cast<double>(segments), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_PlanProgram100kLines)->Unit(benchmark::kMillisecond);
+
+void BM_PlanAndSample100kLines(benchmark::State& state) {
+  const std::string program = long_program(100000);
+  std::uint64_t samples = 0;
+  for (auto _ : state) {
+    std::istringstream in(program);
+    TrajectoryStream stream(in, "long.gcode");
+    while (auto s = stream.next()) benchmark::DoNotOptimize(s->position_m);
+    samples = stream.samples();
+  }
+  state.counters["samples"] = static_cast<double>(samples);
+}
+BENCHMARK(BM_PlanAndSample100kLines)->Unit(benchmark::kMillisecond);
+
+void BM_SampleAt2kHz(benchmark::State& state) {
+  std::istringstream in(long_program(5000));
+  const Trajectory trajectory = plan_gcode(in, "job.gcode");
+  std::uint64_t samples = 0;
+  for (auto _ : state) {
+    TrajectoryCursor cursor(trajectory);
+    Sampler sampler(cursor);
+    while (auto s = sampler.next()) benchmark::DoNotOptimize(s->acceleration_m_s2);
+    samples += sampler.count();
+  }
+  state.counters["ns_per_sample"] =
+      benchmark::Counter(static_cast<double>(samples), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_SampleAt2kHz)->Unit(benchmark::kMillisecond);
+
+void BM_EvaluateAtRandomTime(benchmark::State& state) {
+  std::istringstream in(long_program(5000));
+  const Trajectory trajectory = plan_gcode(in, "job.gcode");
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> unit(0.0, trajectory.duration_s());
+  std::vector<double> times(1024);
+  for (auto& t : times) t = unit(rng);
+  std::size_t i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(trajectory.evaluate(times[i++ & 1023]));
+}
+BENCHMARK(BM_EvaluateAtRandomTime);
+
+}  // namespace
