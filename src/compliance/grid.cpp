@@ -28,9 +28,13 @@ int index_of(const std::vector<double>& lines, double v) {
   return -1;
 }
 
+// Index of the cell [lines[k], lines[k+1]] holding v (edge cells beyond the ends). Grids have a
+// handful of lines, so a linear scan beats a binary search.
 int cell(const std::vector<double>& lines, double v) {
-  const auto it = std::upper_bound(lines.begin() + 1, lines.end() - 1, v);
-  return static_cast<int>(it - lines.begin()) - 1;
+  const std::size_t last = lines.size() - 2;
+  std::size_t k = 0;
+  while (k < last && v >= lines[k + 1]) ++k;
+  return static_cast<int>(k);
 }
 }  // namespace
 

@@ -12,23 +12,26 @@ GridModel::GridModel(std::string method, Grid grid, std::vector<GridNode> nodes)
   if (nodes_.size() != grid_.xs.size() * grid_.ys.size()) {
     throw Error(fmt::format("grid model: {} nodes for a {} x {} grid", nodes_.size(), grid_.xs.size(), grid_.ys.size()));
   }
+  for (const auto& n : nodes_) {
+    compliance_.push_back(n.compliance);
+    offset_.push_back(n.offset);
+  }
 }
 
 template <typename T>
-T GridModel::interpolate(const Vec2& p, T GridNode::*field) const noexcept {
+T GridModel::interpolate(const Vec2& p, const std::vector<T>& values) const noexcept {
   int i = 0, j = 0;
   double tx = 0.0, ty = 0.0;
-  grid_.locate(policy_point(p), i, j, tx, ty);
-  const auto at = [&](int di, int dj) -> const T& {
-    return nodes_[static_cast<std::size_t>(grid_.node(i + di, j + dj))].*field;
-  };
+  const Vec2 q = outside_policy() == OutsidePolicy::extrapolate ? p : bounds_.clamp(p);
+  grid_.locate(q, i, j, tx, ty);
+  const auto at = [&](int di, int dj) -> const T& { return values[static_cast<std::size_t>(grid_.node(i + di, j + dj))]; };
   // Eq. 4.12: [x2 − x, x − x1] · [Δ11 Δ12; Δ21 Δ22] · [y2 − y; y − y1] / ((x2 − x1)(y2 − y1)).
   return T((1 - tx) * (1 - ty) * at(0, 0) + (1 - tx) * ty * at(0, 1) + tx * (1 - ty) * at(1, 0) + tx * ty * at(1, 1));
 }
 
-Mat2 GridModel::compliance(const Vec2& p) const noexcept { return interpolate(p, &GridNode::compliance); }
+Mat2 GridModel::compliance(const Vec2& p) const noexcept { return interpolate(p, compliance_); }
 
-Vec2 GridModel::offset(const Vec2& p) const noexcept { return interpolate(p, &GridNode::offset); }
+Vec2 GridModel::offset(const Vec2& p) const noexcept { return interpolate(p, offset_); }
 
 nlohmann::json GridModel::parameters() const {
   nlohmann::json x_mm = nlohmann::json::array(), y_mm = nlohmann::json::array(), nodes = nlohmann::json::array();

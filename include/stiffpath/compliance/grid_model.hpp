@@ -39,12 +39,15 @@ class GridModel final : public Model {
 
  private:
   template <typename T>
-  T interpolate(const Vec2& p, T GridNode::*field) const noexcept;
+  T interpolate(const Vec2& p, const std::vector<T>& values) const noexcept;
 
   std::string method_;
   Grid grid_;
   GridBounds bounds_;
   std::vector<GridNode> nodes_;
+  // Compact copies of the nodes' values for the real-time path (15 × 48 bytes stay in cache).
+  std::vector<Mat2> compliance_;
+  std::vector<Vec2> offset_;
 };
 
 //! The thesis's model: eqs. 4.8–4.11 per point, eq. 4.12 between points.
