@@ -63,20 +63,25 @@ nlohmann::json line_stats(const LineFit& f) {
 }
 }  // namespace
 
+std::unique_ptr<GridModel> build_grid_model(std::string method, const std::vector<Vec2>& positions,
+                                            const std::function<GridNode(std::size_t)>& make_node,
+                                            const std::string& source) {
+  std::vector<int> node_of;
+  Grid grid = Grid::from_positions(positions, node_of, source);
+  std::vector<GridNode> nodes(positions.size());
+  for (std::size_t k = 0; k < positions.size(); ++k) nodes[static_cast<std::size_t>(node_of[k])] = make_node(k);
+  return std::make_unique<GridModel>(std::move(method), std::move(grid), std::move(nodes));
+}
+
 std::unique_ptr<GridModel> make_bilinear_model(const std::vector<PointFit>& fits, const std::string& source) {
   std::vector<Vec2> positions;
   for (const auto& f : fits) positions.push_back(f.position);
-  std::vector<int> node_of;
-  Grid grid = Grid::from_positions(positions, node_of, source);
-  std::vector<GridNode> nodes(fits.size());
-  for (std::size_t k = 0; k < fits.size(); ++k) {
+  return build_grid_model("bilinear", positions, [&](std::size_t k) {
     const PointFit& f = fits[k];
-    nodes[static_cast<std::size_t>(node_of[k])] = {
-        f.id, f.compliance(), f.offset(),
-        {{"dx_fx", line_stats(f.dx_fx)}, {"dx_fy", line_stats(f.dx_fy)},
-         {"dy_fx", line_stats(f.dy_fx)}, {"dy_fy", line_stats(f.dy_fy)}}};
-  }
-  return std::make_unique<GridModel>("bilinear", std::move(grid), std::move(nodes));
+    return GridNode{f.id, f.compliance(), f.offset(),
+                    {{"dx_fx", line_stats(f.dx_fx)}, {"dx_fy", line_stats(f.dx_fy)},
+                     {"dy_fx", line_stats(f.dy_fx)}, {"dy_fy", line_stats(f.dy_fy)}}};
+  }, source);
 }
 
 }  // namespace stiffpath::compliance

@@ -76,13 +76,8 @@ GridNode fit_symmetric_node(const PointSamples& point, const std::string& source
 std::unique_ptr<GridModel> make_symmetric_model(const std::vector<PointSamples>& points, const std::string& source) {
   std::vector<Vec2> positions;
   for (const auto& p : points) positions.push_back(p.position);
-  std::vector<int> node_of;
-  Grid grid = Grid::from_positions(positions, node_of, source);
-  std::vector<GridNode> nodes(points.size());
-  for (std::size_t k = 0; k < points.size(); ++k) {
-    nodes[static_cast<std::size_t>(node_of[k])] = fit_symmetric_node(points[k], source);
-  }
-  return std::make_unique<GridModel>("symmetric", std::move(grid), std::move(nodes));
+  return build_grid_model("symmetric", positions, [&](std::size_t k) { return fit_symmetric_node(points[k], source); },
+                          source);
 }
 
 }  // namespace stiffpath::compliance

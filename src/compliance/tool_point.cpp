@@ -11,10 +11,7 @@ namespace stiffpath::compliance {
 std::unique_ptr<GridModel> make_angular_model(const std::vector<PointFit>& fits, const std::string& source) {
   std::vector<Vec2> positions;
   for (const auto& f : fits) positions.push_back(f.position);
-  std::vector<int> node_of;
-  Grid grid = Grid::from_positions(positions, node_of, source);
-  std::vector<GridNode> nodes(fits.size());
-  for (std::size_t k = 0; k < fits.size(); ++k) {
+  return build_grid_model("angular", positions, [&](std::size_t k) {
     const auto a = fits[k].angular_compliance();
     if (!a) {
       throw Error(SourceLocation{source},
@@ -22,9 +19,8 @@ std::unique_ptr<GridModel> make_angular_model(const std::vector<PointFit>& fits,
                               "along x and along y",
                               fits[k].id));
     }
-    nodes[static_cast<std::size_t>(node_of[k])] = {fits[k].id, *a, Vec2::Zero(), nlohmann::json::object()};
-  }
-  return std::make_unique<GridModel>("angular", std::move(grid), std::move(nodes));
+    return GridNode{fits[k].id, *a, Vec2::Zero(), nlohmann::json::object()};
+  }, source);
 }
 
 ToolPointModel::ToolPointModel(std::shared_ptr<const Model> at_G, std::shared_ptr<const GridModel> angular,

@@ -1,6 +1,7 @@
 // Compliance on the measurement grid with bilinear interpolation between nodes (thesis eq. 4.12).
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -49,6 +50,12 @@ class GridModel final : public Model {
   std::vector<Mat2> compliance_;
   std::vector<Vec2> offset_;
 };
+
+//! Places one node per point on the grid that `positions` form (Grid::from_positions checks it is
+//! full); `make_node(k)` builds the node of point k.
+std::unique_ptr<GridModel> build_grid_model(std::string method, const std::vector<Vec2>& positions,
+                                            const std::function<GridNode(std::size_t)>& make_node,
+                                            const std::string& source);
 
 //! The thesis's model: eqs. 4.8–4.11 per point, eq. 4.12 between points.
 std::unique_ptr<GridModel> make_bilinear_model(const std::vector<PointFit>& fits, const std::string& source);
