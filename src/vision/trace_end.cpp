@@ -1,0 +1,112 @@
+// A free end of the mark: the path's end from the darkness area beyond a cut across the mark (round laser spot).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "cross_section.hpp"
+
+namespace stiffpath::vision::detail {
+
+namespace {
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+double b_on(const SectionFrame& fr, const evaluation::Line2& l, double a) {
+  return fr.b_of(l.at((a - fr.a_of(l.origin)) / fr.a_of(l.direction)));
+}
+
+}  // namespace
+
+Paper section_paper(const SideSections& side, const Section& s) {
+  if (!s.lo && !s.hi) {
+    const CoarseGrid* grid = side.grid;
+    const SectionFrame fr = side.frame;
+    const int a = s.a;
+    return [grid, fr, a](double b) {
+      const Point2 p = fr.xy(a + 0.5, b);
+      return grid->paper_at(p.x(), p.y());
+    };
+  }
+  const double lo = s.lo.value_or(*s.hi), hi = s.hi.value_or(*s.lo);
+  const double p0 = s.lo_pos, span = s.hi_pos - s.lo_pos;
+  return [lo, hi, p0, span](double b) { return std::max(1e-6, lo + (hi - lo) * (b - p0) / span); };
+}
+
+evaluation::Line2 end_line(const SideSections& side, bool low, std::size_t count) {
+  std::vector<Point2> pts;
+  for (int k = 0; k <= side.body_last - side.body_first && pts.size() < count; ++k) {
+    const Section& s = side.at(low ? side.body_first + k : side.body_last - k);
+    if (!s.rejected) pts.push_back(side.frame.xy(s.a + 0.5, s.centre));
+  }
+  return evaluation::fit_line_tls(pts).line;
+}
+
+// The darkness area beyond the cut edge a_cut is w·|end − Q| + πw²/8 for a round spot of diameter w,
+// Q being where the path crosses the cut (blur moves no darkness across a cut through the uniform
+// band). First with full windows; then, to keep paper texture out, with windows covering only the
+// expected footprint (the path's last stretch widened by w/2 + 3σ_blur + ½ px) and a cut moved up to
+// (w/2)·tan θ + 3σ + ½ px before the end.
+FreeEnd measure_free_end(const SideSections& side, bool low, const ScanOptions& options) {
+  const SectionFrame& fr = side.frame;
+  const evaluation::Line2 l = end_line(side, low, side.end_fit);
+  // Width and darkness of the mark's last stretch before the end (both from the same darkness scale).
+  std::vector<double> ml, kl;
+  for (int k = 0; k <= side.body_last - side.body_first && ml.size() < side.end_fit; ++k) {
+    const Section& s = side.at(low ? side.body_first + k : side.body_last - k);
+    if (!s.rejected) ml.push_back(s.mass), kl.push_back(s.core);
+  }
+  const double k_local = median(kl), w = median(ml) / k_local * side.cos_t;
+  const double margin = std::clamp(3 * side.blur_px + 0.5, 1.5, options.band_margin_px);
+  const double radius = w / 2 + margin;
+  const double dir = low ? -1.0 : 1.0;  // outward along a
+  const Point2 outward = l.direction * (fr.a_of(l.direction) * dir > 0 ? 1.0 : -1.0);
+  const double slope_a = std::abs(fr.a_of(l.direction));
+  int a_cut = low ? side.body_first : side.body_last + 1;
+  std::optional<Point2> cap;
+  FreeEnd result;
+  for (int pass = 0; pass < 3; ++pass) {
+    if (cap) {
+      // Move the cut towards the end, but keep it on the full-width band.
+      const double keep = (w / 2) * side.tan_t + margin;
+      const double a_limit = fr.a_of(*cap) - dir * keep * slope_a;
+      const int candidate = low ? static_cast<int>(std::ceil(a_limit)) : static_cast<int>(std::floor(a_limit));
+      a_cut = low ? std::clamp(candidate, side.first + 1, side.body_first) : std::clamp(candidate, side.body_last + 1, side.last);
+    }
+    const Point2 q = l.at((a_cut - fr.a_of(l.origin)) / fr.a_of(l.direction));
+    const Point2 inner = q - outward * (2 * radius);
+    double area = 0, level_before = 1.0, a_half = std::numeric_limits<double>::quiet_NaN();
+    for (int a = low ? a_cut - 1 : a_cut; a >= side.first && a <= side.last; a += low ? -1 : 1) {
+      const double b_mid = b_on(fr, l, a + 0.5);
+      double from = b_mid - side.h_wide, to = b_mid + side.h_wide;
+      if (cap) {  // the b-range of section a within `radius` of the segment from inside the band to the cap
+        const Point2 seg = *cap - inner;
+        from = 1e300, to = -1e300;
+        for (double b = b_mid - side.h_wide - radius; b <= b_mid + side.h_wide + radius; b += 0.125) {
+          const Point2 p = fr.xy(a + 0.5, b);
+          const double t = std::clamp((p - inner).dot(seg) / seg.squaredNorm(), 0.0, 1.0);
+          if ((p - inner - t * seg).norm() <= radius) from = std::min(from, b), to = std::max(to, b);
+        }
+        if (from > to) break;
+      }
+      const double m = window_sums(fr, a, from, to, section_paper(side, side.at(a))).mass / k_local;
+      const double level = m * side.cos_t / w;
+      if (std::isnan(a_half) && level < 0.5) a_half = a + 0.5 - dir * (0.5 - level) / std::max(1e-9, level_before - level);
+      level_before = level;
+      area += m;
+    }
+    cap = q + outward * ((area - std::numbers::pi * w * w / 8) / w);
+    // A round spot's profile falls to half at 0.433·w beyond its centre (√3/2 · w/2).
+    const double expected = fr.a_of(*cap) + dir * 0.433 * w * slope_a;
+    result.round = !std::isnan(a_half) && std::abs(a_half - expected) <= 0.2 * w + 1.5 + 0.5 * w * side.tan_t;
+  }
+  result.cap = *cap;
+  return result;
+}
+
+}  // namespace stiffpath::vision::detail
