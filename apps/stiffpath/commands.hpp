@@ -10,6 +10,8 @@ namespace stiffpath::cli {
 void add_kin_command(CLI::App& app);
 void add_mechanism_command(CLI::App& app);
 void add_mobility_command(CLI::App& app);
+void add_scan_command(CLI::App& app);
+void add_render_scan_command(CLI::App& app);
 
 //! Prints a JSON document on stdout (two-space indent, newline).
 void print_json(const nlohmann::json& document);

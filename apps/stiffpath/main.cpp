@@ -26,6 +26,8 @@ int main(int argc, char** argv) {
   stiffpath::cli::add_kin_command(app);
   stiffpath::cli::add_mechanism_command(app);
   stiffpath::cli::add_mobility_command(app);
+  stiffpath::cli::add_scan_command(app);
+  stiffpath::cli::add_render_scan_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

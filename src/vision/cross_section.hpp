@@ -73,7 +73,8 @@ struct SideSections {
   double cos_t = 1, tan_t = 0;  //!< angle between the side and the section's along axis
   double h_wide = 0;            //!< half window of the darkness integrals (px)
   double blur_px = 0;           //!< σ of the edge blur, perpendicular to the side (px)
-  double darkness = 0;          //!< median core darkness
+  double darkness = 0;          //!< full darkness of the mark (its core's, corrected for blur)
+  double core_factor = 1;       //!< core darkness / full darkness (< 1 when blur reaches the core)
   std::size_t end_fit = 20;     //!< sections used for a free end's local line, width and darkness
   [[nodiscard]] Section& at(int a) { return secs[static_cast<std::size_t>(a - first)]; }
   [[nodiscard]] const Section& at(int a) const { return secs[static_cast<std::size_t>(a - first)]; }

@@ -1,6 +1,7 @@
 // A free end of the mark: the path's end from the darkness area beyond a cut across the mark (round laser spot).
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <limits>
 #include <numbers>
 
@@ -19,6 +20,35 @@ double median(std::vector<double> v) {
 
 double b_on(const SectionFrame& fr, const evaluation::Line2& l, double a) {
   return fr.b_of(l.at((a - fr.a_of(l.origin)) / fr.a_of(l.direction)));
+}
+
+// The interval of b where the line a = const crosses the capsule of radius r around segment p–q (all in
+// the section frame's (a, b)); empty (lo > hi) when it misses. The capsule is convex, so the chord is
+// the union of the chords of its two end disks and of its straight part.
+std::pair<double, double> capsule_chord(double a, Point2 p, Point2 q, double r) {
+  double lo = 1e300, hi = -1e300;
+  for (const Point2& c : {p, q}) {
+    const double dx = a - c.x();
+    if (std::abs(dx) <= r) {
+      const double h = std::sqrt(r * r - dx * dx);
+      lo = std::min(lo, c.y() - h), hi = std::max(hi, c.y() + h);
+    }
+  }
+  const Point2 d = q - p;
+  const double len = d.norm();
+  if (len > 0 && std::abs(d.x()) > 1e-12) {
+    const Point2 u = d / len;  // |offset| = |(a − p.x)·u.y − (b − p.y)·u.x| ≤ r, and 0 ≤ (x − p)·u ≤ len
+    const double centre = p.y() + (a - p.x()) * u.y() / u.x(), half = r / std::abs(u.x());
+    double s_lo = centre - half, s_hi = centre + half;
+    if (std::abs(u.y()) > 1e-12) {
+      const double t0 = (p.y() + (0 - (a - p.x()) * u.x()) / u.y()), t1 = (p.y() + (len - (a - p.x()) * u.x()) / u.y());
+      s_lo = std::max(s_lo, std::min(t0, t1)), s_hi = std::min(s_hi, std::max(t0, t1));
+    } else if ((a - p.x()) * u.x() < 0 || (a - p.x()) * u.x() > len) {
+      s_lo = 1e300, s_hi = -1e300;
+    }
+    if (s_lo <= s_hi) lo = std::min(lo, s_lo), hi = std::max(hi, s_hi);
+  }
+  return {lo, hi};
 }
 
 }  // namespace
@@ -61,8 +91,14 @@ FreeEnd measure_free_end(const SideSections& side, bool low, const ScanOptions& 
     const Section& s = side.at(low ? side.body_first + k : side.body_last - k);
     if (!s.rejected) ml.push_back(s.mass), kl.push_back(s.core);
   }
-  const double k_local = median(kl), w = median(ml) / k_local * side.cos_t;
-  const double margin = std::clamp(3 * side.blur_px + 0.5, 1.5, options.band_margin_px);
+  const double k_local = median(kl) / side.core_factor, w = median(ml) / k_local * side.cos_t;
+  // Edge spread: the blur and the pixels' own area (variance 1/12).
+  const double sigma = std::sqrt(side.blur_px * side.blur_px + 1.0 / 12);
+  const double margin = std::min(1.5 * sigma + 0.25, options.band_margin_px);
+  // Darkness of a blurred edge beyond a window `margin` outside it, per unit edge length (Gaussian blur):
+  // σ·(φ(z) − z·(1 − Φ(z))), z = margin/σ. Added back for the footprint's edges.
+  const double z = margin / sigma;
+  const double tail = sigma * (std::exp(-0.5 * z * z) / std::sqrt(2 * std::numbers::pi) - z * 0.5 * std::erfc(z / std::sqrt(2.0)));
   const double radius = w / 2 + margin;
   const double dir = low ? -1.0 : 1.0;  // outward along a
   const Point2 outward = l.direction * (fr.a_of(l.direction) * dir > 0 ? 1.0 : -1.0);
@@ -73,7 +109,7 @@ FreeEnd measure_free_end(const SideSections& side, bool low, const ScanOptions& 
   for (int pass = 0; pass < 3; ++pass) {
     if (cap) {
       // Move the cut towards the end, but keep it on the full-width band.
-      const double keep = (w / 2) * side.tan_t + margin;
+      const double keep = (w / 2) * side.tan_t + 3 * sigma + 0.5;
       const double a_limit = fr.a_of(*cap) - dir * keep * slope_a;
       const int candidate = low ? static_cast<int>(std::ceil(a_limit)) : static_cast<int>(std::floor(a_limit));
       a_cut = low ? std::clamp(candidate, side.first + 1, side.body_first) : std::clamp(candidate, side.body_last + 1, side.last);
@@ -85,13 +121,8 @@ FreeEnd measure_free_end(const SideSections& side, bool low, const ScanOptions& 
       const double b_mid = b_on(fr, l, a + 0.5);
       double from = b_mid - side.h_wide, to = b_mid + side.h_wide;
       if (cap) {  // the b-range of section a within `radius` of the segment from inside the band to the cap
-        const Point2 seg = *cap - inner;
-        from = 1e300, to = -1e300;
-        for (double b = b_mid - side.h_wide - radius; b <= b_mid + side.h_wide + radius; b += 0.125) {
-          const Point2 p = fr.xy(a + 0.5, b);
-          const double t = std::clamp((p - inner).dot(seg) / seg.squaredNorm(), 0.0, 1.0);
-          if ((p - inner - t * seg).norm() <= radius) from = std::min(from, b), to = std::max(to, b);
-        }
+        const Point2 p{fr.a_of(inner), fr.b_of(inner)}, e{fr.a_of(*cap), fr.b_of(*cap)};
+        std::tie(from, to) = capsule_chord(a + 0.5, p, e, radius);
         if (from > to) break;
       }
       const double m = window_sums(fr, a, from, to, section_paper(side, side.at(a))).mass / k_local;
@@ -100,6 +131,7 @@ FreeEnd measure_free_end(const SideSections& side, bool low, const ScanOptions& 
       level_before = level;
       area += m;
     }
+    if (cap) area += tail * (std::numbers::pi * w / 2 + 2 * std::max(0.0, (*cap - q).dot(outward)));
     cap = q + outward * ((area - std::numbers::pi * w * w / 8) / w);
     // A round spot's profile falls to half at 0.433·w beyond its centre (√3/2 · w/2).
     const double expected = fr.a_of(*cap) + dir * 0.433 * w * slope_a;

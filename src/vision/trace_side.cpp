@@ -168,11 +168,22 @@ SideTrace trace_side(const cv::Mat& grey, const CoarseGrid& grid, const MarkComp
     cores.push_back(s.core);
     clipped = clipped || wide.clipped;
   }
-  ss.darkness = median(cores);
+  // The core of a mark only a few blur widths wide does not reach full darkness: a box of section extent
+  // S blurred by σ (profile variance S²/12 + σ², + 1/12 for the pixel sampling) peaks at
+  // k·erf(S / (2√2·√(σ² + 1/12))). Solve for the full darkness k, S and σ together.
+  std::vector<double> masses;
+  for (const auto& s : ss.secs) if (s.body) masses.push_back(s.mass);
+  const double core = median(cores), mass = median(masses), spread = median(spreads);
+  double k = core, sigma_b = 0;
+  for (int it = 0; it < 30; ++it) {
+    const double extent_b = mass / k;
+    sigma_b = std::sqrt(std::max(0.01, spread - (extent_b * extent_b + 1) / 12));
+    k = core / std::max(0.2, std::erf(extent_b / (2 * std::sqrt(2 * (sigma_b * sigma_b + 1.0 / 12)))));
+  }
+  ss.darkness = k;
+  ss.core_factor = core / k;
+  ss.blur_px = ss.cos_t * sigma_b;
   for (auto& s : ss.secs) s.width = s.mass / ss.darkness * ss.cos_t;
-  // A box of the section extent S blurred by σ has variance S²/12 + σ² (+1/12 for the pixel sampling).
-  const double extent2 = median(mass1) / ss.darkness;
-  ss.blur_px = ss.cos_t * std::sqrt(std::max(0.0, median(spreads) - (extent2 * extent2 + 1) / 12));
   if (clipped) out.warnings.push_back("the mark comes so close to the image border that some cross-sections are cut short");
 
   out.rejected = reject_outliers(ss, line);
