@@ -45,10 +45,18 @@ std::pair<std::vector<std::vector<evaluation::Point2>>, bool> read_path(const st
   core::CsvReader csv(path);
   const auto cx = csv.column("x_mm"), cy = csv.column("y_mm");
   std::vector<evaluation::Point2> points;
-  while (csv.next()) points.emplace_back(csv.number(cx) * 1e-3, csv.number(cy) * 1e-3);
+  while (csv.next()) {
+    const evaluation::Point2 p{csv.number(cx) * 1e-3, csv.number(cy) * 1e-3};
+    if (points.empty() || (p - points.back()).norm() > 1e-12) points.push_back(p);  // a robot at rest repeats points
+  }
   if (points.size() < 2) throw Error(SourceLocation{path, 0, 0}, "a path needs at least two points");
-  if (sides == 1) return {{points}, false};
-  auto split = evaluation::split_polyline(points, sides);
+  // Drawn and measured as the polyline through the points, sampled every 20 µm.
+  std::vector<evaluation::Point2> dense;
+  for (const auto& piece : vision::sample_shape({points, false}, {})) {
+    dense.insert(dense.end(), piece.begin() + (dense.empty() ? 0 : 1), piece.end());
+  }
+  if (sides == 1) return {{dense}, false};
+  auto split = evaluation::split_polyline(dense, sides);
   return {split.sides, split.closed};
 }
 

@@ -2,7 +2,6 @@
 #include <algorithm>
 #include <cmath>
 #include <tuple>
-#include <limits>
 #include <numbers>
 
 #include "cross_section.hpp"
@@ -116,7 +115,8 @@ FreeEnd measure_free_end(const SideSections& side, bool low, const ScanOptions& 
     }
     const Point2 q = l.at((a_cut - fr.a_of(l.origin)) / fr.a_of(l.direction));
     const Point2 inner = q - outward * (2 * radius);
-    double area = 0, level_before = 1.0, a_half = std::numeric_limits<double>::quiet_NaN();
+    double area = 0;
+    std::vector<std::pair<Point2, double>> profile;  // centre-line point of each section and its relative darkness
     for (int a = low ? a_cut - 1 : a_cut; a >= side.first && a <= side.last; a += low ? -1 : 1) {
       const double b_mid = b_on(fr, l, a + 0.5);
       double from = b_mid - side.h_wide, to = b_mid + side.h_wide;
@@ -127,15 +127,30 @@ FreeEnd measure_free_end(const SideSections& side, bool low, const ScanOptions& 
       }
       const double m = window_sums(fr, a, from, to, section_paper(side, side.at(a))).mass / k_local;
       const double level = m * side.cos_t / w;
-      if (std::isnan(a_half) && level < 0.5) a_half = a + 0.5 - dir * (0.5 - level) / std::max(1e-9, level_before - level);
-      level_before = level;
+      profile.emplace_back(fr.xy(a + 0.5, b_mid), level);
       area += m;
     }
     if (cap) area += tail * (std::numbers::pi * w / 2 + 2 * std::max(0.0, (*cap - q).dot(outward)));
     cap = q + outward * ((area - std::numbers::pi * w * w / 8) / w);
     // A round spot's profile falls to half at 0.433·w beyond its centre (√3/2 · w/2).
-    const double expected = fr.a_of(*cap) + dir * 0.433 * w * slope_a;
-    result.round = !std::isnan(a_half) && std::abs(a_half - expected) <= 0.2 * w + 1.5 + 0.5 * w * side.tan_t;
+    // Shape check: each section's darkness against a round spot's chord through that section (the
+    // capsule of radius w/2 ending at the cap), blurred along the section axis by σ.
+    const Point2 p0{fr.a_of(inner), fr.b_of(inner)}, p1{fr.a_of(*cap), fr.b_of(*cap)};
+    double sq = 0, norm = 0;
+    int count = 0;
+    for (int k = -4; k <= 4; ++k) norm += std::exp(-0.125 * k * k);
+    for (const auto& [point, level] : profile) {
+      const double tau = (point - *cap).dot(outward);
+      if (tau < -0.25 * w || tau > 0.5 * w + 2 * sigma) continue;
+      double expected = 0;
+      for (int k = -4; k <= 4; ++k) {  // 9-point Gaussian quadrature on ±2σ
+        const auto [from, to] = capsule_chord(fr.a_of(point) + 0.5 * k * sigma, p0, p1, w / 2);
+        expected += std::exp(-0.125 * k * k) * std::max(0.0, to - from) * side.cos_t / w;
+      }
+      sq += std::pow(level - expected / norm, 2);
+      ++count;
+    }
+    result.round = count > 0 && std::sqrt(sq / count) < 0.06;
   }
   result.cap = *cap;
   return result;
