@@ -39,7 +39,7 @@ struct RenderOptions {
   double margin_m = 2e-3;         //!< paper around the mark on every side (m)
   double blur_px = 0.8;           //!< σ of the scanner's Gaussian blur (px); 0 = none
   double noise = 0.01;            //!< σ of white pixel noise (fraction of full scale)
-  double texture = 0.02;          //!< σ of the wood-fibre texture of the paper (fraction of its brightness)
+  double texture = 0.01;          //!< σ of the wood-fibre texture of the paper (fraction of its brightness)
   double shading = 0.08;          //!< illumination falloff across the image, peak to peak (fraction)
   double paper_level = 0.88;      //!< paper brightness (fraction of full scale)
   double ink_level = 0.22;        //!< brightness of a fully marked pixel on paper of paper_level
