@@ -4,13 +4,14 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <stdexcept>
 
 #include "stiffpath/core/units.hpp"
 
 namespace stiffpath::evaluation {
 
 double round_for_json(double value) {
-  if (!std::isfinite(value)) return 0.0;
+  if (!std::isfinite(value)) throw std::logic_error("a path metric is not a finite number (a bug upstream)");
   if (value == 0.0) return 0.0;
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.12g", value);

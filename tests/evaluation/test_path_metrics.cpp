@@ -152,6 +152,12 @@ TEST(PathMetrics, JsonCarriesUnitsAndSidesOnlyForSeveralSides) {
   EXPECT_NEAR(lengths[2], std::hypot(15.0, 26.0), 1e-6);
 }
 
+TEST(PathMetrics, JsonNeverCarriesNaN) {
+  EXPECT_EQ(round_for_json(0.1234567890123456), 0.123456789012);
+  EXPECT_THROW(round_for_json(std::nan("")), std::logic_error);
+  EXPECT_THROW(round_for_json(INFINITY), std::logic_error);
+}
+
 TEST(PathMetrics, BadInputIsRefused) {
   const std::vector<Point2> two{{0, 0}, {1, 0}};
   EXPECT_THROW(measure_path(two, 0), Error);
