@@ -1,0 +1,79 @@
+// Synthetic scans of laser-marked paths with their ground truth: for tests, and to turn a simulated path into a scan.
+#pragma once
+
+#include <cstdint>
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "stiffpath/evaluation/path_metrics.hpp"
+
+namespace stiffpath::vision {
+
+using evaluation::Point2;
+
+//! A decaying vibration across the path, like the marks of thesis fig. 4.12:
+//! offset(s) = A·e^(−s/τ)·sin(2π s/λ) along the path's arc length s, perpendicular to the path.
+struct Wiggle {
+  double amplitude_m = 0;        //!< A (m); 0 = a clean path
+  double wavelength_m = 10e-3;   //!< λ (m)
+  double decay_length_m = 40e-3; //!< τ (m)
+};
+
+//! The nominal path to mark: vertices in m (x right, y down, as on the scan), sides between them.
+struct PathShape {
+  std::vector<Point2> vertices;  //!< for a closed shape the first vertex is not repeated
+  bool closed = false;
+};
+
+//! A straight line of `length_m` along +x.
+PathShape line_shape(double length_m);
+//! An equilateral triangle of side `side_m` with a horizontal base, apex up on screen, vertices from the
+//! bottom-left one clockwise on screen (closed).
+PathShape triangle_shape(double side_m);
+
+//! How the scan looks. Defaults resemble a 1200 dpi office scan of a laser mark on coated chipboard.
+struct RenderOptions {
+  double dpi = 1200;              //!< resolution of the image (dots per inch)
+  double mark_width_m = 0.2e-3;   //!< diameter of the laser spot = width of the mark (m)
+  double rotation_rad = 0;        //!< rotation of the path (rad); positive turns x towards y, clockwise on screen (y down)
+  double margin_m = 2e-3;         //!< paper around the mark on every side (m)
+  double blur_px = 0.8;           //!< σ of the scanner's Gaussian blur (px); 0 = none
+  double noise = 0.01;            //!< σ of white pixel noise (fraction of full scale)
+  double texture = 0.02;          //!< σ of the wood-fibre texture of the paper (fraction of its brightness)
+  double shading = 0.08;          //!< illumination falloff across the image, peak to peak (fraction)
+  double paper_level = 0.88;      //!< paper brightness (fraction of full scale)
+  double ink_level = 0.22;        //!< brightness of a fully marked pixel on paper of paper_level
+  int specks = 0;                 //!< dust specks (dark dots of 1–4 px radius) scattered over the image
+  int bit_depth = 8;              //!< 8 or 16
+  bool colour = false;            //!< three-channel BGR image (a warm paper tone) instead of grey
+  std::uint64_t seed = 1;         //!< seed of every random choice (noise, texture, specks)
+  //! Metrics options of the ground truth; by default an interpolating spline (exact for the dense path).
+  evaluation::PathMetricsOptions truth_options{0.0};
+};
+
+//! A rendered scan and what is known about it.
+struct RenderedScan {
+  cv::Mat image;                                   //!< CV_8U/CV_16U, one or three channels
+  double dpi = 1200;
+  double mark_width_m = 0;
+  std::vector<std::vector<Point2>> sides;          //!< the marked centre path per side, image frame (m)
+  bool closed = false;
+  evaluation::PathMetrics truth;                   //!< metrics of the exact centre path (evaluation module)
+};
+
+//! Densely samples a shape (points at most `step_m` apart, and ≤ λ/100 with a wiggle), adding the
+//! wiggle along the whole path. One point list per side; consecutive sides share their corner.
+std::vector<std::vector<Point2>> sample_shape(const PathShape& shape, const Wiggle& wiggle, double step_m = 20e-6);
+
+//! Renders sides (points in m, any frame): rotates them, places them `margin_m` inside an image
+//! just large enough, draws the mark as every point within mark_width/2 of the path (a round
+//! laser spot: round ends) with area-sampled anti-aliasing, then blur, paper texture, shading,
+//! noise and specks. The truth is evaluation::measure_sides on the placed path. Throws
+//! stiffpath::Error for invalid options or an image above 200 Mpx.
+RenderedScan render_scan(const std::vector<std::vector<Point2>>& sides, bool closed, const RenderOptions& options);
+
+//! Draws the coverage (0..1, area fraction of each pixel within `radius_px` of the polyline given in
+//! pixel units) into `coverage` (CV_32F), keeping the larger value where something is already drawn.
+void draw_stroke_coverage(cv::Mat& coverage, const std::vector<Point2>& polyline_px, double radius_px);
+
+}  // namespace stiffpath::vision

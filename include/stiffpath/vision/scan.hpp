@@ -1,0 +1,66 @@
+// Measuring a laser-marked path on a scan (thesis §4.6): segmentation, sub-pixel centre line, px → m, path metrics.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "stiffpath/evaluation/path_metrics.hpp"
+
+namespace stiffpath::vision {
+
+using evaluation::Point2;
+
+//! Options of the scan analysis. Pixel-sized settings are in px of the scan.
+struct ScanOptions {
+  int sides = 1;  //!< straight sides of the path: 1 a line, 3 a triangle, N a polyline
+  //! Spline cutoff wavelength and corner trim of the metrics (defaults 1 mm and 1 mm).
+  evaluation::PathMetricsOptions metrics;
+  int cell_px = 4;                  //!< cell of the coarse grid used to find the mark (px)
+  double band_margin_px = 4.0;      //!< cross-section half-window beyond the mark's half extent (covers the blur)
+  int flank_px = 5;                 //!< paper pixels on each side of a cross-section for its background
+  int baseline_window = 31;         //!< cross-sections averaged for the background level
+  double min_mark_length_m = 1e-3;  //!< dark features smaller than this are dust specks
+  std::string label = "<image>";    //!< names the image in errors
+};
+
+//! What the scan says about one side beyond the path metrics.
+struct ScanSide {
+  double width_m = 0;              //!< median width of the mark's cross-sections (m)
+  std::vector<Point2> centres;     //!< sub-pixel centre-line points (m, image frame), cap centres of free ends included
+  std::size_t sections = 0;        //!< cross-sections measured
+  std::size_t rejected_sections = 0;  //!< left out as outliers (dust on the mark, gaps)
+};
+
+//! Result of analyse_scan. Coordinates are in the image frame: x to the right, y down, origin at
+//! the top-left corner of the top-left pixel, in m.
+struct ScanResult {
+  evaluation::PathMetrics metrics;  //!< length, deviation area, max deviation, straightness, sides, corners
+  std::vector<ScanSide> sides;      //!< same order as metrics.sides
+  double width_m = 0;               //!< median mark width over all sides (m)
+  double mark_darkness = 0;         //!< 1 − mark/paper brightness of the fully marked core
+  double paper_noise = 0;           //!< robust σ of the paper's relative brightness at the coarse grid
+  int specks_ignored = 0;           //!< dark features below min_mark_length_m that were ignored
+  double dpi = 0;
+  int width_px = 0, height_px = 0;
+  std::vector<std::string> warnings;  //!< conditions that may bias the numbers (never silently)
+};
+
+//! Measures the one marked path on a grey scan (CV_8U or CV_16U) at `dpi`. Steps: coarse
+//! background (block medians on a 4 px grid) and dark-feature segmentation; the largest feature is
+//! the mark (a second one of ≥ 20 % its size, or the mark touching the border, is an error; small
+//! ones are specks); its sides by a line fit (one side) or sequential RANSAC (several), corners by
+//! intersecting them; per side, cross-sections along the image axis nearer its normal: local
+//! paper level from the flanks, darkness 1 − I/paper, intensity-weighted centroid (sub-pixel
+//! centre) and darkness integral (width); free ends from the darkness area beyond a cut across the
+//! mark, assuming a round laser spot (see docs/vision.md). Throws stiffpath::Error naming
+//! options.label for an empty image, no mark, two marks, a mark on the border, or a mark that does
+//! not split into the requested sides.
+ScanResult analyse_scan(const cv::Mat& grey, double dpi, const ScanOptions& options = {});
+
+//! The result with units in the keys: evaluation::to_json(metrics) plus width_mm (and per side),
+//! dpi, image size, mark darkness, specks ignored, rejected sections and the warnings.
+nlohmann::json to_json(const ScanResult& result);
+
+}  // namespace stiffpath::vision

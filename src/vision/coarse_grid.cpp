@@ -1,0 +1,101 @@
+// Coarse grid of a scan: block means, paper level from block medians (shading), darkness and its noise threshold.
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+#include <vector>
+
+#include "scan_internal.hpp"
+
+namespace stiffpath::vision::detail {
+
+namespace {
+
+template <class T>
+void block_means(const cv::Mat& grey, int cell, cv::Mat& mean) {
+  const int gh = mean.rows, gw = mean.cols;
+  std::vector<double> sums(static_cast<std::size_t>(gw));
+  std::vector<int> counts(static_cast<std::size_t>(gw));
+  for (int gy = 0; gy < gh; ++gy) {
+    std::fill(sums.begin(), sums.end(), 0.0);
+    std::fill(counts.begin(), counts.end(), 0);
+    for (int y = gy * cell; y < std::min(grey.rows, (gy + 1) * cell); ++y) {
+      const T* row = grey.ptr<T>(y);
+      for (int gx = 0; gx < gw; ++gx) {
+        const int x0 = gx * cell, x1 = std::min(grey.cols, x0 + cell);
+        unsigned long acc = 0;
+        for (int x = x0; x < x1; ++x) acc += row[x];
+        sums[static_cast<std::size_t>(gx)] += static_cast<double>(acc);
+        counts[static_cast<std::size_t>(gx)] += x1 - x0;
+      }
+    }
+    float* out = mean.ptr<float>(gy);
+    for (int gx = 0; gx < gw; ++gx) out[gx] = static_cast<float>(sums[static_cast<std::size_t>(gx)] / counts[static_cast<std::size_t>(gx)]);
+  }
+}
+
+double median_of(std::vector<float>& v) {
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+}  // namespace
+
+double CoarseGrid::paper_at(double x_px, double y_px) const {
+  const double gx = std::clamp(x_px / cell - 0.5, 0.0, background.cols - 1.0);
+  const double gy = std::clamp(y_px / cell - 0.5, 0.0, background.rows - 1.0);
+  const int x0 = static_cast<int>(gx), y0 = static_cast<int>(gy);
+  const int x1 = std::min(x0 + 1, background.cols - 1), y1 = std::min(y0 + 1, background.rows - 1);
+  const double fx = gx - x0, fy = gy - y0;
+  const auto at = [&](int y, int x) { return static_cast<double>(background.at<float>(y, x)); };
+  return (1 - fy) * ((1 - fx) * at(y0, x0) + fx * at(y0, x1)) + fy * ((1 - fx) * at(y1, x0) + fx * at(y1, x1));
+}
+
+CoarseGrid build_coarse_grid(const cv::Mat& grey, int cell) {
+  CoarseGrid grid;
+  grid.cell = cell;
+  const int gh = (grey.rows + cell - 1) / cell, gw = (grey.cols + cell - 1) / cell;
+  grid.mean.create(gh, gw, CV_32F);
+  if (grey.depth() == CV_8U) {
+    block_means<std::uint8_t>(grey, cell, grid.mean);
+  } else {
+    block_means<std::uint16_t>(grey, cell, grid.mean);
+  }
+  // Paper level: median of 16 × 16 cells (64 px at the default cell), smoothly interpolated. A mark
+  // crossing a block covers a minority of its cells, so the median sees paper; shading is slow.
+  constexpr int kBlock = 16;
+  const int bh = (gh + kBlock - 1) / kBlock, bw = (gw + kBlock - 1) / kBlock;
+  cv::Mat blocks(bh, bw, CV_32F);
+  std::vector<float> values;
+  for (int by = 0; by < bh; ++by) {
+    for (int bx = 0; bx < bw; ++bx) {
+      values.clear();
+      for (int y = by * kBlock; y < std::min(gh, (by + 1) * kBlock); ++y) {
+        for (int x = bx * kBlock; x < std::min(gw, (bx + 1) * kBlock); ++x) values.push_back(grid.mean.at<float>(y, x));
+      }
+      blocks.at<float>(by, bx) = static_cast<float>(median_of(values));
+    }
+  }
+  cv::resize(blocks, grid.background, cv::Size(gw, gh), 0, 0, cv::INTER_LINEAR);
+  grid.darkness.create(gh, gw, CV_32F);
+  std::vector<float> all;
+  all.reserve(static_cast<std::size_t>(gh) * gw);
+  for (int y = 0; y < gh; ++y) {
+    for (int x = 0; x < gw; ++x) {
+      const float bg = std::max(grid.background.at<float>(y, x), 1e-3f);
+      const float d = 1.0f - grid.mean.at<float>(y, x) / bg;
+      grid.darkness.at<float>(y, x) = d;
+      all.push_back(d);
+    }
+  }
+  grid.median = median_of(all);
+  for (auto& v : all) v = std::abs(v - static_cast<float>(grid.median));
+  grid.sigma = 1.4826 * median_of(all);
+  // A cell is dark when it stands 6 σ above the paper's variation, and at least 4 % darker.
+  grid.threshold = grid.median + std::max(6.0 * grid.sigma, 0.04);
+  cv::compare(grid.darkness, grid.threshold, grid.mask, cv::CMP_GT);
+  grid.mask /= 255;
+  return grid;
+}
+
+}  // namespace stiffpath::vision::detail

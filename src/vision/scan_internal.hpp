@@ -1,0 +1,70 @@
+// Internal steps of the scan analysis (coarse grid, mark finding, sides, cross-sections); not installed.
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "stiffpath/evaluation/line_fit.hpp"
+#include "stiffpath/vision/scan.hpp"
+
+namespace stiffpath::vision::detail {
+
+//! Grey value of an 8- or 16-bit single-channel image.
+inline float pixel(const cv::Mat& m, int row, int col) {
+  return m.depth() == CV_8U ? static_cast<float>(m.ptr<std::uint8_t>(row)[col])
+                            : static_cast<float>(m.ptr<std::uint16_t>(row)[col]);
+}
+
+//! The image averaged over cell × cell blocks, the paper level and the darkness 1 − mean/paper.
+struct CoarseGrid {
+  int cell = 4;
+  cv::Mat mean, background, darkness;  //!< CV_32F, ceil(rows/cell) × ceil(cols/cell)
+  double median = 0, sigma = 0, threshold = 0;  //!< of darkness over all cells
+  cv::Mat mask;                        //!< CV_8U, 1 where darkness > threshold
+  //! Paper level at a full-resolution pixel centre, bilinear between cell centres.
+  [[nodiscard]] double paper_at(double x_px, double y_px) const;
+};
+CoarseGrid build_coarse_grid(const cv::Mat& grey, int cell);
+
+//! The mark: one connected dark feature of the coarse grid.
+struct MarkComponent {
+  cv::Mat labels;                //!< CV_32S component labels of the coarse grid
+  int label = 0;                 //!< the mark's label
+  std::vector<Point2> cells_px;  //!< centres of its cells (px)
+  std::vector<double> weights;   //!< their darkness
+  double full_darkness = 0;      //!< darkness of fully covered cells (90th percentile)
+  double width_px = 0;           //!< rough width: area / half the contour length
+  int specks = 0;
+  std::vector<std::string> warnings;
+};
+MarkComponent find_mark(const CoarseGrid& grid, double px_per_m, const ScanOptions& options);
+
+//! A side found on the coarse grid, in px; start and end are corners or rough free ends.
+struct CoarseSide {
+  evaluation::Line2 line;
+  Point2 start{0, 0}, end{0, 0};
+  bool start_is_corner = false, end_is_corner = false;
+  double start_angle_rad = 0, end_angle_rad = 0;  //!< interior angle at a corner
+};
+struct CoarsePath {
+  std::vector<CoarseSide> sides;
+  bool closed = false;
+};
+CoarsePath find_sides(const MarkComponent& mark, int n_sides, double px_per_m, const ScanOptions& options);
+
+//! Centre line of one side from full-resolution cross-sections (px).
+struct SideTrace {
+  std::vector<Point2> centres;            //!< accepted body cross-sections, ordered from start to end
+  std::vector<double> widths;             //!< their perpendicular widths (px)
+  std::optional<Point2> start_cap, end_cap;  //!< estimated path ends (round-spot cap centres) of free ends
+  std::size_t sections = 0, rejected = 0;
+  double width = 0;                       //!< median width (px)
+  double darkness = 0;                    //!< darkness of the mark's core
+  std::vector<std::string> warnings;
+};
+SideTrace trace_side(const cv::Mat& grey, const CoarseGrid& grid, const MarkComponent& mark, const CoarseSide& side,
+                     double px_per_m, const ScanOptions& options);
+
+}  // namespace stiffpath::vision::detail
