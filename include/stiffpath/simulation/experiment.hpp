@@ -70,4 +70,9 @@ std::vector<RunResult> run_experiment(const ExperimentOptions& options = {});
 //! CSV header and one line per run (units in the column names, lengths in mm).
 std::string experiment_csv(const std::vector<RunResult>& results);
 
+//! A plain-text table (Markdown) with one line per mechanism × motion at the highest acceleration run:
+//! length error and maximum deviation without → with compensation and the share removed
+//! (1 − |with|/|without|), deviation area and residual vibration.
+std::string experiment_summary(const std::vector<RunResult>& results);
+
 }  // namespace stiffpath::simulation
