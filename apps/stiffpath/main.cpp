@@ -45,6 +45,8 @@ int main(int argc, char** argv) {
   stiffpath::cli::add_repeatability_command(app);
   stiffpath::cli::add_scan_command(app);
   stiffpath::cli::add_render_scan_command(app);
+  stiffpath::cli::add_simulate_command(app);
+  stiffpath::cli::add_experiment_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,62 @@
+// `stiffpath experiment`: the thesis's test matrix (§4.5) on the digital twin, with CSV, summary and figures.
+#include <chrono>
+#include <filesystem>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <memory>
+
+#include "commands.hpp"
+#include "stiffpath/core/atomic_file.hpp"
+#include "stiffpath/report/experiment_plots.hpp"
+#include "stiffpath/report/gnuplot.hpp"
+#include "stiffpath/simulation/experiment.hpp"
+
+namespace stiffpath::cli {
+
+namespace {
+struct ExperimentArgs {
+  std::string output = "experiment";
+  simulation::ExperimentOptions options;
+  bool no_plots = false;
+};
+
+void experiment(const ExperimentArgs& a) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto results = simulation::run_experiment(a.options);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const std::filesystem::path dir(a.output);
+  std::filesystem::create_directories(dir);
+  core::write_file_atomically(dir / "results.csv", simulation::experiment_csv(results));
+  const std::string summary = simulation::experiment_summary(results);
+  core::write_file_atomically(dir / "summary.md", summary);
+  fmt::print("{} runs in {:.2f} s → {}\n\n{}", results.size(), seconds, (dir / "results.csv").string(), summary);
+  if (!a.no_plots) {
+    if (!report::gnuplot_available()) {
+      fmt::print("\ngnuplot not found: figures skipped\n");
+      return;
+    }
+    const auto figures = report::write_experiment_figures(dir, results);
+    fmt::print("\nfigures ({}): {}\n", dir.string(), fmt::join(figures, ", "));
+  }
+}
+}  // namespace
+
+void add_experiment_command(CLI::App& app) {
+  auto a = std::make_shared<ExperimentArgs>();
+  auto* cmd = app.add_subcommand("experiment", "The thesis's test matrix on the digital twin (figs. 4.9-4.11)");
+  cmd->add_option("-o,--output", a->output, "Output directory (results.csv, summary.md, figures)")->capture_default_str();
+  cmd->add_option("--mechanisms", a->options.mechanisms, "Presets to run")->capture_default_str();
+  cmd->add_option("--motions", a->options.motions, "x, y, triangle")->capture_default_str();
+  cmd->add_option("--accelerations-g", a->options.accelerations_g, "Acceleration limits (g)")
+      ->check(CLI::Range(0.1, 10.0))->capture_default_str();
+  cmd->add_option("--perturbation", a->options.truth.perturbation, "Relative perturbation of C_true")
+      ->check(CLI::Range(0.0, 0.5))->capture_default_str();
+  cmd->add_option("--gain", a->options.compensator.gain, "Compensation gain")->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--damping-ratio", a->options.simulation.plant.tip_damping_ratio, "Damping ratio of the tip's modes")
+      ->check(CLI::Range(0.0, 2.0))->capture_default_str();
+  cmd->add_flag("--no-plots", a->no_plots, "Skip the gnuplot figures");
+  cmd->callback([a] { experiment(*a); });
+}
+
+}  // namespace stiffpath::cli

@@ -1,0 +1,47 @@
+// Running a joint trajectory through the plant: interpolated servo references, laser marking, settling.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "stiffpath/compensation/joint_reader.hpp"
+#include "stiffpath/kinematics/mechanism_spec.hpp"
+#include "stiffpath/simulation/plant.hpp"
+
+namespace stiffpath::simulation {
+
+//! Settings of a simulated job. Documented defaults.
+struct SimulationOptions {
+  PlantOptions plant;
+  double settle_s = 0.10;          //!< time simulated after the last command, holding it (residual vibration)
+  double mark_rate_hz = 10000.0;   //!< rate at which the laser's mark is recorded (≤ the step rate)
+};
+
+//! What a simulated job produced. Points in m.
+struct SimulationResult {
+  std::vector<Vec2> marked;         //!< tool point while the laser was on, in time order
+  std::vector<Vec2> commanded;      //!< planned target points of the laser-on commands
+  double duration_s = 0.0;          //!< commanded job time (first to last sample)
+  double peak_deflection_m = 0.0;   //!< max |p − p_b| during the job
+  double residual_vibration_m = 0.0; //!< max |p − p_b| during the settling time after the last command
+  double peak_tracking_error_m = 0.0; //!< max |p_b − FK(q_ref)|: servo error at the base point
+  std::uint64_t steps = 0;          //!< integration steps taken
+};
+
+//! Source of joint samples in time order (nullopt at the end), e.g. a JointReader or an in-process job.
+using JointSource = std::function<std::optional<compensation::JointRecord>()>;
+
+//! Cubic Hermite reference between two joint samples: q and q̇ match both ends, q̈ is linear in between
+//! (the drive's interpolation of a 2 kHz stream). `s` ∈ [0, 1] is the fraction of the interval.
+JointReference interpolate(const compensation::JointRecord& a, const compensation::JointRecord& b, double s) noexcept;
+
+//! Simulates the job: the plant starts at rest, undeflected, at the first sample's joints; each command
+//! interval is split into ⌈interval·step_rate⌉ equal steps; marks are recorded while the interval's
+//! starting sample has the laser on. Throws stiffpath::Error when the source is empty, times do not
+//! increase, or the state becomes non-finite.
+SimulationResult simulate(const JointSource& source, const kinematics::MechanismSpec& mechanism,
+                          std::shared_ptr<const compliance::Model> truth, const SimulationOptions& options = {});
+
+}  // namespace stiffpath::simulation

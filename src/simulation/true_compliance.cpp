@@ -1,0 +1,86 @@
+// C_true: the physics-based compliance field with a seeded smooth perturbation (the plant's "real" robot).
+#include <array>
+#include <cmath>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <random>
+
+#include "stiffpath/compliance/model_factory.hpp"
+#include "stiffpath/core/error.hpp"
+#include "stiffpath/simulation/twin_models.hpp"
+
+namespace stiffpath::simulation {
+namespace {
+
+using compliance::GridBounds;
+using compliance::Mat2;
+using compliance::Vec2;
+
+// s(ξ, η) = 1 + ε·Σ aₖ bₖ(ξ, η) / Σ|aₖ| over the basis {ξ, η, ξη, ξ², η²} on [−1, 1]²; |s − 1| ≤ ε.
+struct ScaleField {
+  std::array<double, 5> a{};
+  double epsilon = 0.0;
+  [[nodiscard]] double operator()(double xi, double eta) const noexcept {
+    const double b[5] = {xi, eta, xi * eta, xi * xi - 0.5, eta * eta - 0.5};
+    double sum = 0.0, norm = 0.0;
+    for (int k = 0; k < 5; ++k) {
+      sum += a[static_cast<std::size_t>(k)] * b[k];
+      norm += std::abs(a[static_cast<std::size_t>(k)]);
+    }
+    return norm > 0.0 ? 1.0 + epsilon * sum / norm : 1.0;
+  }
+};
+
+class PerturbedModel final : public compliance::Model {
+ public:
+  PerturbedModel(std::shared_ptr<const compliance::Model> base, ScaleField sx, ScaleField sy, std::uint64_t seed)
+      : base_(std::move(base)), sx_(sx), sy_(sy), seed_(seed) {
+    set_outside_policy(compliance::OutsidePolicy::extrapolate);
+  }
+  [[nodiscard]] std::string method() const override { return "perturbed-" + base_->method(); }
+  [[nodiscard]] Mat2 compliance(const Vec2& p) const noexcept override {
+    const GridBounds b = base_->bounds();
+    const Vec2 q = b.clamp(p);  // the perturbation is held at its edge value outside the grid
+    const double xi = 2.0 * (q.x() - b.x_min) / (b.x_max - b.x_min) - 1.0;
+    const double eta = 2.0 * (q.y() - b.y_min) / (b.y_max - b.y_min) - 1.0;
+    const Vec2 s(std::sqrt(sx_(xi, eta)), std::sqrt(sy_(xi, eta)));
+    return s.asDiagonal() * base_->compliance(p) * s.asDiagonal();
+  }
+  [[nodiscard]] GridBounds bounds() const noexcept override { return base_->bounds(); }
+  [[nodiscard]] nlohmann::json parameters() const override {
+    return {{"base", base_->parameters()},
+            {"perturbation", sx_.epsilon},
+            {"seed", seed_},
+            {"sx", sx_.a},
+            {"sy", sy_.a}};
+  }
+
+ private:
+  std::shared_ptr<const compliance::Model> base_;
+  ScaleField sx_, sy_;
+  std::uint64_t seed_;
+};
+
+}  // namespace
+
+std::shared_ptr<const compliance::Model> make_true_compliance(const std::string& build,
+                                                              const TrueComplianceOptions& options) {
+  if (build != "OC" && build != "SC") throw Error(fmt::format("unknown build '{}' (use OC or SC)", build));
+  if (!(options.perturbation >= 0.0 && options.perturbation <= 0.5)) {
+    throw Error(fmt::format("perturbation {} outside [0, 0.5]", options.perturbation));
+  }
+  const std::string name =
+      options.base_model.empty() ? (build == "OC" ? "thesis-oc-physical" : "thesis-sc-physical") : options.base_model;
+  std::shared_ptr<compliance::Model> base = compliance::load_model(name).model;
+  // The plant must follow the physics beyond the measured rectangle, not freeze it.
+  base->set_outside_policy(compliance::OutsidePolicy::extrapolate);
+  std::mt19937_64 rng(options.seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  ScaleField sx, sy;
+  sx.epsilon = sy.epsilon = options.perturbation;
+  for (auto& a : sx.a) a = u(rng);
+  for (auto& a : sy.a) a = u(rng);
+  return std::make_shared<PerturbedModel>(std::move(base), sx, sy, options.seed);
+}
+
+}  // namespace stiffpath::simulation

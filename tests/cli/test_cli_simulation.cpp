@@ -1,0 +1,79 @@
+// End to end: `stiffpath run` → `stiffpath simulate` on the y motion, and `stiffpath experiment` on a reduced matrix.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cli_runner.hpp"
+
+namespace {
+
+using stiffpath::test::run_cli;
+using stiffpath::test::TempDir;
+
+nlohmann::json simulate_y(const TempDir& dir, const std::string& run_flags, const std::string& accel) {
+  const std::string job = std::string(STIFFPATH_SOURCE_DIR) + "/examples/y_motion.gcode";
+  const auto run = run_cli("run " + job + " -o j.csv --accel " + accel + " " + run_flags, dir.path());
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  const auto sim = run_cli("simulate j.csv --json", dir.path());
+  EXPECT_EQ(sim.exit_code, 0) << sim.err;
+  return nlohmann::json::parse(sim.out);
+}
+
+TEST(CliSimulate, CompensatedYMotionTracksBetter) {
+  TempDir dir;
+  const auto off = simulate_y(dir, "--no-compensation", "5g");
+  const auto on = simulate_y(dir, "", "5g");
+  for (const char* key : {"length_mm", "deviation_area_mm2", "max_deviation_mm", "path_accuracy_mm",
+                          "residual_vibration_mm"}) {
+    ASSERT_TRUE(off.contains(key)) << key;
+    ASSERT_TRUE(on[key].is_number()) << key;
+  }
+  EXPECT_NEAR(off["commanded_length_mm"].get<double>(), 150.0, 1e-3);
+  // The uncompensated mark is longer than commanded (lag at the start, overshoot at the end).
+  EXPECT_GT(off["length_mm"].get<double>(), 150.05);
+  EXPECT_LT(std::abs(on["length_mm"].get<double>() - 150.0), 0.3 * (off["length_mm"].get<double>() - 150.0));
+  EXPECT_LT(on["max_deviation_mm"].get<double>(), 0.5 * off["max_deviation_mm"].get<double>());
+  EXPECT_LT(on["path_accuracy_mm"].get<double>(), 0.5 * off["path_accuracy_mm"].get<double>());
+}
+
+TEST(CliSimulate, BadFileIsAnError) {
+  TempDir dir;
+  std::ofstream(dir.path() / "bad.csv") << "t_s,theta1_rad\n0,abc\n";
+  const auto r = run_cli("simulate bad.csv", dir.path());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("error:"), std::string::npos);
+}
+
+TEST(CliExperiment, ReducedMatrixWritesOneRowPerRun) {
+  TempDir dir;
+  const auto r = run_cli("experiment -o out --mechanisms oc-gu sc-gu --motions y --accelerations-g 1 5 --no-plots",
+                         dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(dir.path() / "out" / "results.csv");
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line.rfind("mechanism,build,cg,compensated,motion,acceleration_g", 0), 0U);
+  int rows = 0;
+  double oc_off_5 = 0, oc_on_5 = 0, sc_off_5 = 0;
+  while (std::getline(in, line)) {
+    ++rows;
+    std::stringstream ss(line);
+    std::vector<std::string> cells;
+    for (std::string c; std::getline(ss, c, ',');) cells.push_back(c);
+    ASSERT_EQ(cells.size(), 15U);
+    const double error = std::stod(cells[9]), g = std::stod(cells[5]);
+    if (g != 5) continue;
+    if (cells[0] == "oc-gu") (cells[3] == "1" ? oc_on_5 : oc_off_5) = error;
+    if (cells[0] == "sc-gu" && cells[3] == "0") sc_off_5 = error;
+  }
+  EXPECT_EQ(rows, 2 * 2 * 1 * 2);
+  EXPECT_GT(oc_off_5, 0.02);
+  EXPECT_LT(std::abs(oc_on_5), 0.1 * oc_off_5);
+  EXPECT_GT(sc_off_5, oc_off_5);  // SC is the more compliant build
+  EXPECT_NE(r.out.find("| oc-gu | y |"), std::string::npos);
+}
+
+}  // namespace

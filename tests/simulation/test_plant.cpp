@@ -1,0 +1,151 @@
+// Plant physics: rest, static deflection C_true·F, natural frequency and damping, no energy growth.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <Eigen/Eigenvalues>
+#include <random>
+
+#include "stiffpath/core/error.hpp"
+#include "stiffpath/kinematics/mechanism_spec.hpp"
+#include "stiffpath/simulation/plant.hpp"
+#include "stiffpath/simulation/twin_models.hpp"
+
+namespace stiffpath::simulation {
+namespace {
+
+struct Fixture {
+  kinematics::MechanismSpec spec = kinematics::load_mechanism("oc-gu");
+  std::shared_ptr<const compliance::Model> truth = make_true_compliance("OC");
+  Plant plant(PlantOptions o = {}) const { return Plant(spec.five_bar(), truth, spec.moving_mass_kg, o); }
+  Vec2 q_at(const Vec2& p) const { return spec.five_bar().inverse(p); }
+};
+
+JointReference hold(const Vec2& q) { return {q, Vec2::Zero(), Vec2::Zero()}; }
+
+TEST(Plant, SqrtSpdSquaresBack) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int i = 0; i < 50; ++i) {
+    Mat2 B;
+    B << u(rng), u(rng), u(rng), u(rng);
+    const Mat2 A = B * B.transpose() + 0.1 * Mat2::Identity();
+    const Mat2 R = sqrt_spd(A);
+    EXPECT_LT((R * R - A).norm(), 1e-12 * A.norm());
+    EXPECT_NEAR(R(0, 1), R(1, 0), 1e-15);
+    EXPECT_GT(R.determinant(), 0.0);
+  }
+}
+
+TEST(Plant, AtRestStaysAtRest) {
+  const Fixture f;
+  for (const Vec2& p : {Vec2(0.222132, 0.0), Vec2(0.18, -0.07), Vec2(0.27, 0.07)}) {
+    Plant plant = f.plant();
+    const Vec2 q = f.q_at(p);
+    plant.reset(q);
+    for (int i = 0; i < 2000; ++i) plant.step(hold(q), 5e-5);
+    EXPECT_LT((plant.state().tip_m - p).norm(), 1e-12);
+    EXPECT_LT(plant.state().tip_m_s.norm(), 1e-12);
+    EXPECT_LT((plant.state().q_rad - q).norm(), 1e-14);
+  }
+}
+
+TEST(Plant, ConstantForceGivesStaticDeflection) {
+  const Fixture f;
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> ux(0.175, 0.27), uy(-0.07, 0.07), uf(-200, 200);
+  for (int trial = 0; trial < 6; ++trial) {
+    const Vec2 p(ux(rng), uy(rng)), F(uf(rng), uf(rng));
+    PlantOptions o;
+    o.tip_damping_ratio = 0.5;  // settle quickly; the static answer does not depend on damping
+    Plant plant = f.plant(o);
+    const Vec2 q = f.q_at(p);
+    plant.reset(q);
+    for (int i = 0; i < 8000; ++i) plant.step(hold(q), 5e-5, F);  // 0.4 s ≫ 1/(ζω)
+    const Vec2 expected = f.truth->compliance(p) * F;
+    const Vec2 got = plant.state().tip_m - p;
+    EXPECT_LT((got - expected).norm(), 1e-3 * expected.norm()) << trial;
+  }
+}
+
+// Free oscillation along an eigenvector of K: frequency √(k/m)·√(1 − ζ²), amplitude ratio per period exp(−2πζ/√(1−ζ²)).
+TEST(Plant, FreeOscillationFrequencyAndDecay) {
+  const Fixture f;
+  const Vec2 p(0.222132, 0.03);
+  for (double zeta : {0.0, 0.05, 0.2}) {
+    PlantOptions o;
+    o.tip_damping_ratio = zeta;
+    Plant plant = f.plant(o);
+    const Vec2 q = f.q_at(p);
+    plant.reset(q);
+    Eigen::SelfAdjointEigenSolver<Mat2> eig(plant.stiffness(p));
+    for (int mode = 0; mode < 2; ++mode) {
+      const double k = eig.eigenvalues()(mode);
+      const Vec2 dir = eig.eigenvectors().col(mode);
+      PlantState s = plant.state();
+      s.tip_m = p + 1e-4 * dir;
+      s.tip_m_s.setZero();
+      plant.set_state(s);
+      const double dt = 5e-5;
+      std::vector<double> t_up, peaks;  // upward zero crossings and positive peaks of the modal coordinate
+      double prev = 1e-4, prev2 = 1e-4;
+      for (int i = 1; i < 12000; ++i) {
+        plant.step(hold(q), dt);
+        const double x = (plant.state().tip_m - p).dot(dir);
+        if (prev < 0 && x >= 0) t_up.push_back(i * dt - dt * x / (x - prev));
+        if (prev > prev2 && prev >= x && prev > 0) peaks.push_back(prev);
+        prev2 = prev;
+        prev = x;
+      }
+      ASSERT_GE(t_up.size(), 4U);
+      const double period = (t_up.back() - t_up.front()) / static_cast<double>(t_up.size() - 1);
+      const double expected = 2 * std::numbers::pi / (std::sqrt(k / f.spec.moving_mass_kg) * std::sqrt(1 - zeta * zeta));
+      EXPECT_NEAR(period, expected, 4e-3 * expected) << zeta << " mode " << mode;
+      if (zeta > 0) {
+        ASSERT_GE(peaks.size(), 3U);
+        const double ratio = peaks[2] / peaks[1];
+        EXPECT_NEAR(ratio, std::exp(-2 * std::numbers::pi * zeta / std::sqrt(1 - zeta * zeta)), 0.01) << zeta;
+      }
+    }
+  }
+}
+
+TEST(Plant, EnergyDoesNotGrowWithoutDamping) {
+  const Fixture f;
+  PlantOptions o;
+  o.tip_damping_ratio = 0.0;
+  Plant plant = f.plant(o);
+  const Vec2 p(0.2, -0.05), q = f.q_at(p);
+  plant.reset(q);
+  PlantState s = plant.state();
+  s.tip_m = p + Vec2(1.5e-4, -0.7e-4);
+  s.tip_m_s = Vec2(0.01, 0.02);
+  plant.set_state(s);
+  const double e0 = plant.relative_energy();
+  double emax = e0, emin = e0;
+  for (int i = 0; i < 40000; ++i) {  // 2 s, ~170 periods
+    plant.step(hold(q), 5e-5);
+    const double e = plant.relative_energy();
+    emax = std::max(emax, e);
+    emin = std::min(emin, e);
+  }
+  // Symplectic Euler: the energy oscillates by O(ωdt) but has no drift.
+  EXPECT_LT(emax, e0 * 1.05);
+  EXPECT_GT(emin, e0 * 0.95);
+  EXPECT_NEAR(plant.relative_energy(), e0, 0.05 * e0);
+}
+
+TEST(Plant, RejectsBadOptions) {
+  const Fixture f;
+  PlantOptions o;
+  o.step_rate_hz = 0;
+  EXPECT_THROW(f.plant(o), Error);
+  o = {};
+  o.tip_damping_ratio = -0.1;
+  EXPECT_THROW(f.plant(o), Error);
+  EXPECT_THROW(Plant(f.spec.five_bar(), nullptr, 3.6), Error);
+  EXPECT_THROW(Plant(f.spec.five_bar(), f.truth, 0.0), Error);
+}
+
+}  // namespace
+}  // namespace stiffpath::simulation
