@@ -4,6 +4,7 @@
 
 #include "commands.hpp"
 #include "stiffpath/compensation/joint_reader.hpp"
+#include "stiffpath/core/atomic_file.hpp"
 #include "stiffpath/kinematics/mechanism_spec.hpp"
 #include "stiffpath/simulation/run_metrics.hpp"
 #include "stiffpath/simulation/twin_models.hpp"
@@ -18,8 +19,19 @@ struct SimulateArgs {
   double perturbation = simulation::TrueComplianceOptions{}.perturbation;
   std::uint64_t seed = simulation::TrueComplianceOptions{}.seed;
   simulation::SimulationOptions sim;
+  std::string marks_csv;
   bool json = false;
 };
+
+// The laser's mark as x_mm, y_mm in marking order, y flipped to the scan's downward axis, so that
+// `stiffpath render-scan --path-csv` draws it as the paper would show it.
+void write_marks(const std::string& path, const simulation::SimulationResult& run) {
+  core::AtomicFile file(path);
+  auto& out = file.stream();
+  out << "x_mm,y_mm\n";
+  for (const auto& p : run.marked) out << fmt::format("{:.6f},{:.6f}\n", p.x() * 1e3, -p.y() * 1e3);
+  file.commit();
+}
 
 void simulate(const SimulateArgs& a) {
   compensation::JointReader reader(a.joints);
@@ -29,6 +41,10 @@ void simulate(const SimulateArgs& a) {
   const simulation::SimulationResult run =
       simulation::simulate([&reader] { return reader.next(); }, spec, truth, a.sim);
   const simulation::RunMetrics m = simulation::measure_run(run, a.sides);
+  if (!a.marks_csv.empty()) write_marks(a.marks_csv, run);
+  const auto corner_metric = [&m](double value_m) -> nlohmann::json {
+    return m.corners == 0 ? nlohmann::json(nullptr) : nlohmann::json(tidy(value_m * 1e3));
+  };
   if (a.json) {
     print_json({{"joints", a.joints},
                 {"mechanism", spec.name},
@@ -40,6 +56,9 @@ void simulate(const SimulateArgs& a) {
                 {"deviation_area_mm2", tidy(m.deviation_area_m2 * 1e6)},
                 {"max_deviation_mm", tidy(m.max_deviation_m * 1e3)},
                 {"path_accuracy_mm", tidy(m.path_accuracy_m * 1e3)},
+                {"corners", m.corners},
+                {"cornering_round_off_mm", corner_metric(m.cornering_round_off_m)},
+                {"cornering_overshoot_mm", corner_metric(m.cornering_overshoot_m)},
                 {"residual_vibration_mm", tidy(m.residual_vibration_m * 1e3)},
                 {"peak_deflection_mm", tidy(m.peak_deflection_m * 1e3)}});
     return;
@@ -50,6 +69,10 @@ void simulate(const SimulateArgs& a) {
              m.commanded_length_m * 1e3, m.length_error_m * 1e3);
   fmt::print("  deviation area {:.4f} mm^2, max deviation {:.4f} mm, path accuracy AT_p {:.4f} mm\n",
              m.deviation_area_m2 * 1e6, m.max_deviation_m * 1e3, m.path_accuracy_m * 1e3);
+  if (m.corners > 0) {
+    fmt::print("  {} corners: round-off CR {:.4f} mm, overshoot CO {:.4f} mm (largest)\n", m.corners,
+               m.cornering_round_off_m * 1e3, m.cornering_overshoot_m * 1e3);
+  }
   fmt::print("  peak tip deflection {:.4f} mm, residual vibration {:.4f} mm\n", m.peak_deflection_m * 1e3,
              m.residual_vibration_m * 1e3);
 }
@@ -71,6 +94,7 @@ void add_simulate_command(CLI::App& app) {
       ->check(CLI::PositiveNumber)->capture_default_str();
   cmd->add_option("--step-rate-hz", a->sim.plant.step_rate_hz, "Integration rate")
       ->check(CLI::Range(1000.0, 1e7))->capture_default_str();
+  cmd->add_option("--marks-csv", a->marks_csv, "Also write the mark (x_mm, y_mm, y down) for `render-scan --path-csv`");
   cmd->add_flag("--json", a->json, "Print the metrics as JSON");
   cmd->callback([a] { simulate(*a); });
 }

@@ -98,18 +98,26 @@ std::vector<RunResult> run_experiment(const ExperimentOptions& options) {
   return results;
 }
 
+namespace {
+// A cornering metric in mm, or an empty CSV cell for a path without corners.
+std::string optional_mm(const RunMetrics& m, double value_m) {
+  return m.corners == 0 ? std::string() : fmt::format("{:.6f}", value_m * 1e3);
+}
+}  // namespace
+
 std::string experiment_csv(const std::vector<RunResult>& results) {
   std::string out =
       "mechanism,build,cg,compensated,motion,acceleration_g,duration_s,length_mm,commanded_length_mm,"
-      "length_error_mm,deviation_area_mm2,max_deviation_mm,path_accuracy_mm,residual_vibration_mm,"
-      "peak_deflection_mm\n";
+      "length_error_mm,deviation_area_mm2,max_deviation_mm,path_accuracy_mm,cornering_round_off_mm,"
+      "cornering_overshoot_mm,residual_vibration_mm,peak_deflection_mm\n";
   for (const auto& r : results) {
     const auto& m = r.metrics;
-    out += fmt::format("{},{},{},{},{},{:g},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f}\n",
+    out += fmt::format("{},{},{},{},{},{:g},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{},{},{:.6f},{:.6f}\n",
                        r.spec.mechanism, r.build, r.cg_label, r.spec.compensated ? 1 : 0, r.spec.motion,
                        r.spec.acceleration_g, r.duration_s, m.length_m * 1e3, m.commanded_length_m * 1e3,
                        m.length_error_m * 1e3, m.deviation_area_m2 * 1e6, m.max_deviation_m * 1e3,
-                       m.path_accuracy_m * 1e3, m.residual_vibration_m * 1e3, m.peak_deflection_m * 1e3);
+                       m.path_accuracy_m * 1e3, optional_mm(m, m.cornering_round_off_m),
+                       optional_mm(m, m.cornering_overshoot_m), m.residual_vibration_m * 1e3, m.peak_deflection_m * 1e3);
   }
   return out;
 }

@@ -82,6 +82,7 @@ TEST(Twin, CompensationRemovesMostOfTheYMotionErrorAt5g) {
   EXPECT_LT(std::abs(b.length_error_m), 0.10 * std::abs(a.length_error_m));
   EXPECT_LT(b.max_deviation_m, 0.20 * a.max_deviation_m);
   EXPECT_LT(b.path_accuracy_m, a.path_accuracy_m);
+  EXPECT_EQ(a.corners, 0U);  // a straight line has no cornering metrics
   std::printf("y 5g OC G_U: length error %.4f → %.4f mm, max deviation %.4f → %.4f mm, AT_p %.4f → %.4f mm\n",
               a.length_error_m * 1e3, b.length_error_m * 1e3, a.max_deviation_m * 1e3, b.max_deviation_m * 1e3,
               a.path_accuracy_m * 1e3, b.path_accuracy_m * 1e3);
@@ -101,6 +102,25 @@ TEST(Twin, UncompensatedErrorGrowsWithAccelerationAndScIsWorse) {
   EXPECT_LT(e1, oc5.metrics.length_error_m);
   EXPECT_LT(oc3.metrics.peak_deflection_m, oc5.metrics.peak_deflection_m);
   EXPECT_LT(oc5.metrics.peak_deflection_m, sc5.metrics.peak_deflection_m);
+}
+
+// ISO 9283 cornering on the triangle's two interior corners (exact stops): without compensation inertia
+// carries the tip past each corner; compensation reduces that overshoot, though vibration excited at the
+// stop remains (docs/simulation.md).
+TEST(Twin, TriangleCornerOvershootIsReducedByCompensation) {
+  for (const char* build : {"OC", "SC"}) {
+    const TwinModels models = make_twin_models(build);
+    const std::string mechanism = std::string(build) == "OC" ? "oc-gu" : "sc-gu";
+    const RunMetrics off = run_once({mechanism, "triangle", 5.0, false}, models).metrics;
+    const RunMetrics on = run_once({mechanism, "triangle", 5.0, true}, models).metrics;
+    ASSERT_EQ(off.corners, 2U) << build;
+    ASSERT_EQ(on.corners, 2U) << build;
+    EXPECT_GT(off.cornering_overshoot_m, 50e-6) << build;
+    EXPECT_LT(on.cornering_overshoot_m, off.cornering_overshoot_m) << build;
+    EXPECT_LT(off.cornering_round_off_m, off.cornering_overshoot_m) << build;  // an exact stop reaches its corner
+    std::printf("triangle 5g %s: CO %.4f → %.4f mm, CR %.4f → %.4f mm\n", build, off.cornering_overshoot_m * 1e3,
+                on.cornering_overshoot_m * 1e3, off.cornering_round_off_m * 1e3, on.cornering_round_off_m * 1e3);
+  }
 }
 
 }  // namespace
