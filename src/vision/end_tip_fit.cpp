@@ -39,11 +39,16 @@ std::vector<Sample> window(const cv::Mat& grey, const CoarseGrid& grid, const Ti
 
 TipFit fit_end_tip(const cv::Mat& grey, const CoarseGrid& grid, const TipGuess& g) {
   // Parameters: offset a (paper level off the coarse grid's), scale b (= k), centre c, radius R.
-  TipFit fit;
+  TipFit fit;  // a failed fit (too few pixels, a singular system) reports the guess, not converged
+  fit.centre = g.centre;
+  fit.radius = g.radius;
+  fit.darkness = g.darkness;
+  fit.rms = 1e9;
   double a = 0, b = g.darkness, radius = g.radius;
   Point2 c = g.centre;
   std::vector<Sample> samples;
   const double h = 1e-3;  // px, for the derivatives of the blurred disk
+  double last_move = 1e300;
   for (int it = 0; it < 16; ++it) {
     if (it < 6) samples = window(grey, grid, g, c, radius);
     if (samples.size() < 8) return fit;
@@ -71,8 +76,8 @@ TipFit fit_end_tip(const cv::Mat& grey, const CoarseGrid& grid, const TipGuess& 
     b += scale * step(1);
     c += scale * Point2{step(2), step(3)};
     radius = std::clamp(radius + scale * step(4), 0.25 * g.radius, 6.0 * g.radius);
-    fit.converged = it >= 6 && move < 1e-4 && std::abs(step(4)) < 1e-4;
-    if (fit.converged) break;
+    last_move = std::max(move, std::abs(step(4)));
+    if (it >= 6 && last_move < 1e-5) break;
   }
   double sq = 0;
   for (const auto& s : samples) sq += std::pow(s.darkness - a - b * blurred_disk((s.at - c).norm(), radius, g.sigma), 2);
@@ -81,7 +86,7 @@ TipFit fit_end_tip(const cv::Mat& grey, const CoarseGrid& grid, const TipGuess& 
   fit.darkness = b;
   fit.pixels = samples.size();
   fit.rms = b > 0 ? std::sqrt(sq / static_cast<double>(samples.size())) / b : 1e9;
-  fit.converged = fit.converged && b > 0;
+  fit.converged = last_move < 1e-3 && b > 0;  // a square cut keeps jumping between its corners
   return fit;
 }
 

@@ -101,7 +101,9 @@ FreeEnd measure_free_end(const SideSections& side, const evaluation::Line2& side
   result.radius = fit.radius;
   result.rms = fit.rms;
   result.cap = fit.centre + outward * (fit.radius - w / 2);
-  result.round = fit.converged && fit.rms < 0.06 && std::abs(fit.radius / (w / 2) - 1) < 0.25;
+  // A tip sharper than the spot cannot be drawn by it; a much blunter one is a cut, or a dot burnt larger
+  // than the spot, whose centre is ambiguous by R − w/2. A square cut also misfits at its corners.
+  result.round = fit.converged && fit.rms < 0.06 && fit.radius > 0.75 * (w / 2) && fit.radius < 1.5 * (w / 2);
   return result;
 }
 
