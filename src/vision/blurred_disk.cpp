@@ -20,7 +20,7 @@ double blurred_disk(double rho, double radius, double sigma) {
   // blurring along x gives Φ((c − rho)/σ) − Φ((−c − rho)/σ), and along y the Gaussian weight φ(y/σ)/σ.
   // With y = R·sin ψ (dy = R·cos ψ dψ, c = R·cos ψ) only |y| ≤ 8σ matters.
   const double psi_max = std::asin(std::min(1.0, 8.0 * sigma / radius));
-  constexpr int n = 64;  // Simpson intervals (even)
+  constexpr int n = 48;  // Simpson intervals (even): error < 1e-7 for R/σ from 1 to 200
   const double h = 2 * psi_max / n;
   double sum = 0;
   for (int i = 0; i <= n; ++i) {

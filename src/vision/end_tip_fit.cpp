@@ -58,8 +58,8 @@ TipFit fit_end_tip(const cv::Mat& grey, const CoarseGrid& grid, const TipGuess& 
       const Point2 rel = s.at - c;
       const double rho = std::max(rel.norm(), 1e-9);
       const double value = blurred_disk(rho, radius, g.sigma);
-      const double d_rho = (blurred_disk(rho + h, radius, g.sigma) - blurred_disk(rho - h, radius, g.sigma)) / (2 * h);
-      const double d_r = (blurred_disk(rho, radius + h, g.sigma) - blurred_disk(rho, radius - h, g.sigma)) / (2 * h);
+      const double d_rho = (blurred_disk(rho + h, radius, g.sigma) - value) / h;
+      const double d_r = (blurred_disk(rho, radius + h, g.sigma) - value) / h;
       Eigen::Matrix<double, 5, 1> j;
       j << 1.0, value, -b * d_rho * rel.x() / rho, -b * d_rho * rel.y() / rho, b * d_r;
       normal += j * j.transpose();
