@@ -86,12 +86,15 @@ Paper section_paper(const SideSections& side, const Section& s);
 //! TLS line through the `count` accepted body centres nearest the low-a or high-a end.
 evaluation::Line2 end_line(const SideSections& side, bool low, std::size_t count);
 
-//! A free end of a side: the path's end point (the round spot's centre) and whether its darkness
-//! profile looks like a round spot's.
+//! A free end of a side: the path's farthest point along the side (the centre of the round spot there)
+//! and whether the footprint's tip looks like a round spot's.
 struct FreeEnd {
   Point2 cap{0, 0};
+  double radius = 0;  //!< fitted radius of the tip's edge (px)
+  double rms = 0;     //!< rms misfit of the tip, relative to the mark's darkness
   bool round = true;
 };
-FreeEnd measure_free_end(const SideSections& side, bool low, const ScanOptions& options);
+//! `side_line` is the side's fitted line; the end is measured along its direction.
+FreeEnd measure_free_end(const SideSections& side, const evaluation::Line2& side_line, bool low, const ScanOptions& options);
 
 }  // namespace stiffpath::vision::detail

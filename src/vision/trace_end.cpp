@@ -1,10 +1,9 @@
-// A free end of the mark: the path's end from the darkness area beyond a cut across the mark (round laser spot).
+// A free end of the mark: the path's farthest point from the round laser spot fitted at the tip of its footprint.
 #include <algorithm>
 #include <cmath>
-#include <tuple>
-#include <numbers>
 
 #include "cross_section.hpp"
+#include "end_tip.hpp"
 
 namespace stiffpath::vision::detail {
 
@@ -19,35 +18,6 @@ double median(std::vector<double> v) {
 
 double b_on(const SectionFrame& fr, const evaluation::Line2& l, double a) {
   return fr.b_of(l.at((a - fr.a_of(l.origin)) / fr.a_of(l.direction)));
-}
-
-// The interval of b where the line a = const crosses the capsule of radius r around segment p–q (all in
-// the section frame's (a, b)); empty (lo > hi) when it misses. The capsule is convex, so the chord is
-// the union of the chords of its two end disks and of its straight part.
-std::pair<double, double> capsule_chord(double a, Point2 p, Point2 q, double r) {
-  double lo = 1e300, hi = -1e300;
-  for (const Point2& c : {p, q}) {
-    const double dx = a - c.x();
-    if (std::abs(dx) <= r) {
-      const double h = std::sqrt(r * r - dx * dx);
-      lo = std::min(lo, c.y() - h), hi = std::max(hi, c.y() + h);
-    }
-  }
-  const Point2 d = q - p;
-  const double len = d.norm();
-  if (len > 0 && std::abs(d.x()) > 1e-12) {
-    const Point2 u = d / len;  // |offset| = |(a − p.x)·u.y − (b − p.y)·u.x| ≤ r, and 0 ≤ (x − p)·u ≤ len
-    const double centre = p.y() + (a - p.x()) * u.y() / u.x(), half = r / std::abs(u.x());
-    double s_lo = centre - half, s_hi = centre + half;
-    if (std::abs(u.y()) > 1e-12) {
-      const double t0 = (p.y() + (0 - (a - p.x()) * u.x()) / u.y()), t1 = (p.y() + (len - (a - p.x()) * u.x()) / u.y());
-      s_lo = std::max(s_lo, std::min(t0, t1)), s_hi = std::min(s_hi, std::max(t0, t1));
-    } else if ((a - p.x()) * u.x() < 0 || (a - p.x()) * u.x() > len) {
-      s_lo = 1e300, s_hi = -1e300;
-    }
-    if (s_lo <= s_hi) lo = std::min(lo, s_lo), hi = std::max(hi, s_hi);
-  }
-  return {lo, hi};
 }
 
 }  // namespace
@@ -76,83 +46,64 @@ evaluation::Line2 end_line(const SideSections& side, bool low, std::size_t count
   return evaluation::fit_line_tls(pts).line;
 }
 
-// The darkness area beyond the cut edge a_cut is w·|end − Q| + πw²/8 for a round spot of diameter w,
-// Q being where the path crosses the cut (blur moves no darkness across a cut through the uniform
-// band). First with full windows; then, to keep paper texture out, with windows covering only the
-// expected footprint (the path's last stretch widened by w/2 + 3σ_blur + ½ px) and a cut moved up to
-// (w/2)·tan θ + 3σ + ½ px before the end.
-FreeEnd measure_free_end(const SideSections& side, bool low, const ScanOptions& options) {
+// The end point of the path is where the path reaches farthest along the side, and the footprint of a
+// round spot of diameter w reaches exactly w/2 farther: its extent along u is max over the path of
+// p·u + w/2, whatever the path does near its end (stops, curves sideways, overshoots and turns back).
+// Near that extreme the footprint's edge is a circle of radius R ≥ w/2 (w/2 where the spot stops or
+// turns back sharply), so a blurred disk fitted to the outermost part of the edge gives the extent
+// c·u + R, and the path's extreme point is c + (R − w/2)·u. The fit's residual and R tell whether
+// the end looks like a round spot at all (a square cut gives a flat front: R ≫ w/2 and misfit corners).
+FreeEnd measure_free_end(const SideSections& side, const evaluation::Line2& side_line, bool low, const ScanOptions& options) {
   const SectionFrame& fr = side.frame;
   const evaluation::Line2 l = end_line(side, low, side.end_fit);
   // Width and darkness of the mark's last stretch before the end (both from the same darkness scale).
   std::vector<double> ml, kl;
+  int seed_a = low ? side.body_first : side.body_last;
+  bool seeded = false;
   for (int k = 0; k <= side.body_last - side.body_first && ml.size() < side.end_fit; ++k) {
-    const Section& s = side.at(low ? side.body_first + k : side.body_last - k);
-    if (!s.rejected) ml.push_back(s.mass), kl.push_back(s.core);
+    const int a = low ? side.body_first + k : side.body_last - k;
+    const Section& s = side.at(a);
+    if (s.rejected) continue;
+    ml.push_back(s.mass), kl.push_back(s.core);
+    if (!seeded) seed_a = a, seeded = true;
   }
-  const double k_local = median(kl) / side.core_factor, w = median(ml) / k_local * side.cos_t;
-  // Edge spread: the blur and the pixels' own area (variance 1/12).
-  const double sigma = std::sqrt(side.blur_px * side.blur_px + 1.0 / 12);
-  const double margin = std::min(1.5 * sigma + 0.25, options.band_margin_px);
-  // Darkness of a blurred edge beyond a window `margin` outside it, per unit edge length (Gaussian blur):
-  // σ·(φ(z) − z·(1 − Φ(z))), z = margin/σ. Added back for the footprint's edges.
-  const double z = margin / sigma;
-  const double tail = sigma * (std::exp(-0.5 * z * z) / std::sqrt(2 * std::numbers::pi) - z * 0.5 * std::erfc(z / std::sqrt(2.0)));
-  const double radius = w / 2 + margin;
+  const double core = median(kl), k_local = core / side.core_factor, w = median(ml) / k_local * side.cos_t;
+  const double sigma = std::sqrt(side.blur_px * side.blur_px + 1.0 / 12);  // blur and the pixels' own area
   const double dir = low ? -1.0 : 1.0;  // outward along a
-  const Point2 outward = l.direction * (fr.a_of(l.direction) * dir > 0 ? 1.0 : -1.0);
-  const double slope_a = std::abs(fr.a_of(l.direction));
-  int a_cut = low ? side.body_first : side.body_last + 1;
-  std::optional<Point2> cap;
+  const Point2 outward = side_line.direction * (fr.a_of(side_line.direction) * dir > 0 ? 1.0 : -1.0);
+
+  // The search box: from the last body section out to the last section, wide enough for a hook.
+  const double reach = side.h_wide + 2 * w + options.band_margin_px;
+  const int a_in = low ? seed_a + 2 : seed_a - 2, a_out = low ? side.first - 2 : side.last + 2;
+  double b_lo = 1e300, b_hi = -1e300;
+  for (const int a : {a_in, a_out}) b_lo = std::min(b_lo, b_on(fr, l, a + 0.5) - reach), b_hi = std::max(b_hi, b_on(fr, l, a + 0.5) + reach);
+  const Point2 p0 = fr.xy(std::min(a_in, a_out), b_lo), p1 = fr.xy(std::max(a_in, a_out) + 1, b_hi);
+  TipSearch search;
+  search.box = cv::Rect(cv::Point(static_cast<int>(std::floor(std::min(p0.x(), p1.x()))), static_cast<int>(std::floor(std::min(p0.y(), p1.y())))),
+                        cv::Point(static_cast<int>(std::ceil(std::max(p0.x(), p1.x()))), static_cast<int>(std::ceil(std::max(p0.y(), p1.y())))));
+  search.seed = fr.xy(seed_a + 0.5, side.at(seed_a).centre);
+  search.outward = outward;
+  search.threshold = 0.5 * core;
   FreeEnd result;
-  for (int pass = 0; pass < 3; ++pass) {
-    if (cap) {
-      // Move the cut towards the end, but keep it on the full-width band.
-      const double keep = (w / 2) * side.tan_t + 3 * sigma + 0.5;
-      const double a_limit = fr.a_of(*cap) - dir * keep * slope_a;
-      const int candidate = low ? static_cast<int>(std::ceil(a_limit)) : static_cast<int>(std::floor(a_limit));
-      a_cut = low ? std::clamp(candidate, side.first + 1, side.body_first) : std::clamp(candidate, side.body_last + 1, side.last);
-    }
-    const Point2 q = l.at((a_cut - fr.a_of(l.origin)) / fr.a_of(l.direction));
-    const Point2 inner = q - outward * (2 * radius);
-    double area = 0;
-    std::vector<std::pair<Point2, double>> profile;  // centre-line point of each section and its relative darkness
-    for (int a = low ? a_cut - 1 : a_cut; a >= side.first && a <= side.last; a += low ? -1 : 1) {
-      const double b_mid = b_on(fr, l, a + 0.5);
-      double from = b_mid - side.h_wide, to = b_mid + side.h_wide;
-      if (cap) {  // the b-range of section a within `radius` of the segment from inside the band to the cap
-        const Point2 p{fr.a_of(inner), fr.b_of(inner)}, e{fr.a_of(*cap), fr.b_of(*cap)};
-        std::tie(from, to) = capsule_chord(a + 0.5, p, e, radius);
-        if (from > to) break;
-      }
-      const double m = window_sums(fr, a, from, to, section_paper(side, side.at(a))).mass / k_local;
-      const double level = m * side.cos_t / w;
-      profile.emplace_back(fr.xy(a + 0.5, b_mid), level);
-      area += m;
-    }
-    if (cap) area += tail * (std::numbers::pi * w / 2 + 2 * std::max(0.0, (*cap - q).dot(outward)));
-    cap = q + outward * ((area - std::numbers::pi * w * w / 8) / w);
-    // A round spot's profile falls to half at 0.433·w beyond its centre (√3/2 · w/2).
-    // Shape check: each section's darkness against a round spot's chord through that section (the
-    // capsule of radius w/2 ending at the cap), blurred along the section axis by σ.
-    const Point2 p0{fr.a_of(inner), fr.b_of(inner)}, p1{fr.a_of(*cap), fr.b_of(*cap)};
-    double sq = 0, norm = 0;
-    int count = 0;
-    for (int k = -4; k <= 4; ++k) norm += std::exp(-0.125 * k * k);
-    for (const auto& [point, level] : profile) {
-      const double tau = (point - *cap).dot(outward);
-      if (tau < -0.25 * w || tau > 0.5 * w + 2 * sigma) continue;
-      double expected = 0;
-      for (int k = -4; k <= 4; ++k) {  // 9-point Gaussian quadrature on ±2σ
-        const auto [from, to] = capsule_chord(fr.a_of(point) + 0.5 * k * sigma, p0, p1, w / 2);
-        expected += std::exp(-0.125 * k * k) * std::max(0.0, to - from) * side.cos_t / w;
-      }
-      sq += std::pow(level - expected / norm, 2);
-      ++count;
-    }
-    result.round = count > 0 && std::sqrt(sq / count) < 0.06;
+  const std::optional<Point2> far = farthest_dark_point(*fr.grey, *side.grid, search);
+  if (!far) {
+    result.cap = search.seed;
+    result.round = false;
+    return result;
   }
-  result.cap = *cap;
+  TipGuess guess;
+  guess.radius = w / 2;
+  guess.centre = *far - outward * (guess.radius - 0.5);
+  guess.outward = outward;
+  guess.darkness = k_local;
+  guess.sigma = sigma;
+  const TipFit fit = fit_end_tip(*fr.grey, *side.grid, guess);
+  result.radius = fit.radius;
+  result.rms = fit.rms;
+  result.cap = fit.centre + outward * (fit.radius - w / 2);
+  // A tip sharper than the spot cannot be drawn by it; a much blunter one is a cut, or a dot burnt larger
+  // than the spot, whose centre is ambiguous by R − w/2. A square cut also misfits at its corners.
+  result.round = fit.converged && fit.rms < 0.06 && fit.radius > 0.75 * (w / 2) && fit.radius < 1.5 * (w / 2);
   return result;
 }
 

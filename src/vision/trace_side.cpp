@@ -197,9 +197,10 @@ SideTrace trace_side(const cv::Mat& grey, const CoarseGrid& grid, const MarkComp
   out.width = median(out.widths);
   out.darkness = ss.darkness;
 
+  const Line2 body_line = evaluation::fit_line_tls(out.centres).line;
   for (const bool low : {true, false}) {
     if (!(low ? low_free : high_free)) continue;
-    const FreeEnd end = measure_free_end(ss, low, o);
+    const FreeEnd end = measure_free_end(ss, body_line, low, o);
     ((da > 0) == low ? out.start_cap : out.end_cap) = end.cap;
     if (!end.round) {
       out.warnings.push_back(fmt::format("the mark's end near x = {:.2f} mm, y = {:.2f} mm is not a round laser-spot end; "

@@ -53,8 +53,9 @@ struct ScanResult {
 //! ones are specks); its sides by a line fit (one side) or sequential RANSAC (several), corners by
 //! intersecting them; per side, cross-sections along the image axis nearer its normal: local
 //! paper level from the flanks, darkness 1 − I/paper, intensity-weighted centroid (sub-pixel
-//! centre) and darkness integral (width); free ends from the darkness area beyond a cut across the
-//! mark, assuming a round laser spot (see docs/vision.md). Throws stiffpath::Error naming
+//! centre) and darkness integral (width); free ends at the mark's farthest point along the side, from
+//! a blurred round laser spot fitted to the footprint's tip (hooked or overshooting ends included;
+//! see docs/vision.md). Throws stiffpath::Error naming
 //! options.label for an empty image, no mark, two marks, a mark on the border, or a mark that does
 //! not split into the requested sides.
 ScanResult analyse_scan(const cv::Mat& grey, double dpi, const ScanOptions& options = {});
