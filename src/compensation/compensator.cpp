@@ -1,8 +1,9 @@
 // Compensator::step: D'Alembert force, predicted deflection, corrected target, inverse kinematics, checks.
 #include "stiffpath/compensation/compensator.hpp"
 
-#include <Eigen/LU>
+#include <array>
 #include <cmath>
+#include <span>
 
 #include "stiffpath/core/error.hpp"
 
@@ -26,6 +27,20 @@ constexpr double kDerivativeStep_m = 1e-4;  // the model's change along the path
 constexpr double kMaxTimeStep_s = 1e-3;     // … or ±1 ms of the local motion when moving slowly
 
 bool finite(const Vec2& v) noexcept { return std::isfinite(v.x()) && std::isfinite(v.y()); }
+
+// M·v written out: Eigen's product of fixed 2×2 by 2×1 is not always inlined, and each call then
+// sends its operands through memory. Same arithmetic, so the same numbers.
+Vec2 times(const Mat2& M, const Vec2& v) noexcept {
+  return {M(0, 0) * v.x() + M(0, 1) * v.y(), M(1, 0) * v.x() + M(1, 1) * v.y()};
+}
+
+// The 2×2 inverse by the adjugate, as Eigen computes it (one division).
+Mat2 inverse(const Mat2& M) noexcept {
+  const double inverse_det = 1.0 / (M(0, 0) * M(1, 1) - M(1, 0) * M(0, 1));
+  Mat2 out;
+  out << M(1, 1) * inverse_det, -M(0, 1) * inverse_det, -M(1, 0) * inverse_det, M(0, 0) * inverse_det;
+  return out;
+}
 }  // namespace
 
 Compensator::Compensator(const kinematics::MechanismSpec& mechanism, std::shared_ptr<const compliance::Model> model,
@@ -34,6 +49,7 @@ Compensator::Compensator(const kinematics::MechanismSpec& mechanism, std::shared
   if (!model_) throw Error("compensator needs a compliance model");
   if (!std::isfinite(options_.gain) || options_.gain < 0.0) throw Error("compensation gain must be finite and >= 0");
   effective_gain_ = options_.enabled ? options_.gain : 0.0;
+  bounds_ = model_->bounds();
 }
 
 JointCommand Compensator::step(const TaskSample& s) const noexcept {
@@ -51,30 +67,41 @@ JointCommand Compensator::step(const TaskSample& s) const noexcept {
   const double m = spec_.moving_mass_kg;
   const double k = effective_gain_;
   c.force_N = -m * s.acceleration_m_s2;
-  c.outside_grid = !model_->inside(s.position_m);
+  c.outside_grid = !bounds_.contains(s.position_m);
   if (c.outside_grid && model_->outside_policy() == compliance::OutsidePolicy::error && k != 0.0) {
     c.status = Status::outside_grid;
     return c;
   }
-  // Δ = model.predict(p, F), written out so that C(p) serves the derivatives below too.
-  const Mat2 C = model_->compliance(s.position_m);
-  c.deflection_m = C * c.force_N;
+  // Δ = model.predict(p, F), written out so that C(p) serves the derivatives below too. Ċ and C̈
+  // come from C at p(t ± h) = p ± v·h + a·h²/2, with h such that the points lie ~0.1 mm apart; all
+  // three matrices come from one call to the model.
+  std::array<Vec2, 3> points{s.position_m, s.position_m, s.position_m};
+  std::array<Mat2, 3> Cs;
+  double inverse_h = 0.0;  // 1/h, so that the differences below take no division
+  if (k != 0.0) {
+    const double speed = s.velocity_m_s.norm();
+    const bool moving = speed * kMaxTimeStep_s > kDerivativeStep_m;
+    const double h = moving ? kDerivativeStep_m / speed : kMaxTimeStep_s;
+    inverse_h = moving ? speed / kDerivativeStep_m : 1.0 / kMaxTimeStep_s;
+    const Vec2 drift = 0.5 * h * h * s.acceleration_m_s2;
+    points[1] = s.position_m + h * s.velocity_m_s + drift;
+    points[2] = s.position_m - h * s.velocity_m_s + drift;
+  }
+  model_->compliance_batch(std::span<const Vec2>(points.data(), k != 0.0 ? 3 : 1), Cs);
+  const Mat2& C = Cs[0];
+  c.deflection_m = times(C, c.force_N);
   if (model_->zero_force() == compliance::ZeroForce::thesis_raw) c.deflection_m += model_->offset(s.position_m);
   c.command_m = s.position_m - k * c.deflection_m;
 
   Vec2 pd_cmd = s.velocity_m_s, pdd_cmd = s.acceleration_m_s2;
   if (k != 0.0) {
-    // Δ = −m·C(p(t))·a(t): dΔ/dt = −m·(C·j + Ċ·a), d²Δ/dt² = −m·(C·s + 2·Ċ·j + C̈·a). Ċ and C̈ come
-    // from C at p(t ± h) = p ± v·h + a·h²/2, with h such that the points lie ~0.1 mm apart.
-    const double speed = s.velocity_m_s.norm();
-    const double h = speed * kMaxTimeStep_s > kDerivativeStep_m ? kDerivativeStep_m / speed : kMaxTimeStep_s;
-    const Vec2 drift = 0.5 * h * h * s.acceleration_m_s2;
-    const Mat2 C_after = model_->compliance(s.position_m + h * s.velocity_m_s + drift);
-    const Mat2 C_before = model_->compliance(s.position_m - h * s.velocity_m_s + drift);
-    const Mat2 C_dot = (C_after - C_before) / (2.0 * h);
-    const Mat2 C_ddot = (C_after - 2.0 * C + C_before) / (h * h);
-    pd_cmd += k * m * (C * s.jerk_m_s3 + C_dot * s.acceleration_m_s2);
-    pdd_cmd += k * m * (C * s.snap_m_s4 + 2.0 * C_dot * s.jerk_m_s3 + C_ddot * s.acceleration_m_s2);
+    // Δ = −m·C(p(t))·a(t): dΔ/dt = −m·(C·j + Ċ·a), d²Δ/dt² = −m·(C·s + 2·Ċ·j + C̈·a).
+    const Mat2& C_after = Cs[1];
+    const Mat2& C_before = Cs[2];
+    const Mat2 C_dot = (C_after - C_before) * (0.5 * inverse_h);
+    const Mat2 C_ddot = (C_after - 2.0 * C + C_before) * (inverse_h * inverse_h);
+    pd_cmd += k * m * (times(C, s.jerk_m_s3) + times(C_dot, s.acceleration_m_s2));
+    pdd_cmd += k * m * (times(C, s.snap_m_s4) + 2.0 * times(C_dot, s.jerk_m_s3) + times(C_ddot, s.acceleration_m_s2));
   }
 
   Mat2 J;
@@ -84,9 +111,9 @@ JointCommand Compensator::step(const TaskSample& s) const noexcept {
     return c;
   }
   c.q_rad = ik.q;
-  const Mat2 J_inv = J.inverse();
-  c.qd_rad_s = J_inv * pd_cmd;
-  c.qdd_rad_s2 = J_inv * (pdd_cmd - kinematics::FiveBar::jacobian_dot_from(J, c.qd_rad_s) * c.qd_rad_s);
+  const Mat2 J_inv = inverse(J);
+  c.qd_rad_s = times(J_inv, pd_cmd);
+  c.qdd_rad_s2 = times(J_inv, pdd_cmd - times(kinematics::FiveBar::jacobian_dot_from(J, c.qd_rad_s), c.qd_rad_s));
   if (options_.check_limits) {
     int joint = -1;
     switch (kinematics::check_joint_limits(spec_, c.q_rad, c.qd_rad_s, c.qdd_rad_s2, joint)) {

@@ -1,9 +1,12 @@
-// run_job: the streaming offline pipeline with its summary and located errors.
+// run_job: the streaming offline job (planning here, compensation and writing in a two-thread pipeline), its summary and located errors.
 #include "stiffpath/compensation/job.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <exception>
 #include <fmt/format.h>
 
+#include "job_pipeline.hpp"
 #include "stiffpath/compensation/numeric_acceleration.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/core/units.hpp"
@@ -65,32 +68,67 @@ namespace {
 JobSummary run_job(motion::SampleSource& source, const Compensator& compensator, JointWriter* writer,
                    const std::string& job_label, double rate_hz, AccelerationSource acceleration,
                    const Progress& progress) {
-  JobSummary summary;
-  const auto consume = [&](const TaskSample& sample) {
-    const JointCommand c = compensator.step(sample);
-    if (c.status != Status::ok) refuse(c, compensator, job_label);
-    summary.duration_s = c.t_s;
-    summary.peak_deflection_m = std::max(summary.peak_deflection_m, c.deflection_m.norm());
-    summary.peak_correction_m = std::max(summary.peak_correction_m, (c.command_m - c.target_m).norm());
-    summary.peak_force_N = std::max(summary.peak_force_N, c.force_N.norm());
-    summary.peak_joint_velocity_rad_s = std::max(summary.peak_joint_velocity_rad_s, c.qd_rad_s.cwiseAbs().maxCoeff());
-    summary.peak_joint_acceleration_rad_s2 =
-        std::max(summary.peak_joint_acceleration_rad_s2, c.qdd_rad_s2.cwiseAbs().maxCoeff());
-    summary.samples_outside_grid += c.outside_grid ? 1 : 0;
-    if (writer) writer->write(c);
-    if ((++summary.samples & 0xffff) == 0 && progress) progress(summary.samples, c.line);
-  };
   NumericDifferentiator numeric(rate_hz);
-  while (const auto sample = source.next()) {
-    const TaskSample task = to_task_sample(*sample);
+  bool draining = false;  // numeric: the source is exhausted, the differentiator hands out its last samples
+  // The next sample to compensate, in order; false at the end.
+  const auto next_task = [&](TaskSample& out) -> bool {
     if (acceleration == AccelerationSource::analytic) {
-      consume(task);
-    } else if (const auto ready = numeric.push(task)) {
-      consume(*ready);
+      const auto sample = source.next();
+      if (sample) out = to_task_sample(*sample);
+      return sample.has_value();
     }
+    while (!draining) {
+      const auto sample = source.next();
+      if (!sample) {
+        draining = true;
+      } else if (const auto ready = numeric.push(to_task_sample(*sample))) {
+        out = *ready;
+        return true;
+      }
+    }
+    const auto rest = numeric.drain();
+    if (rest) out = *rest;
+    return rest.has_value();
+  };
+
+  // This thread plans; compensation, checks and writing go through the two-thread pipeline. An
+  // error of the planner (a bad G-code line further on) is reported only after the samples planned
+  // before it: a refusal among them comes first, as when one sample at a time was planned and used.
+  detail::JobPipeline pipeline(compensator, writer);
+  std::exception_ptr planning_error;
+  std::uint64_t planned = 0;
+  bool more = true;
+  while (more) {
+    detail::JobBlock* block = pipeline.acquire();
+    if (!block) break;  // refused or the writer failed: the pipeline says which below
+    std::size_t count = 0;
+    try {
+      while (count < block->tasks.size() && (more = next_task(block->tasks[count]))) {
+        if ((++planned & 0xffff) == 0 && progress) progress(planned, block->tasks[count].line);
+        ++count;
+      }
+    } catch (...) {
+      planning_error = std::current_exception();
+      more = false;
+    }
+    pipeline.release(block, count);
   }
-  while (const auto rest = numeric.drain()) consume(*rest);
+  pipeline.close();
+  if (pipeline.refusal()) refuse(*pipeline.refusal(), compensator, job_label);
+  if (pipeline.writer_error()) std::rethrow_exception(pipeline.writer_error());
+  if (planning_error) std::rethrow_exception(planning_error);
   if (writer) writer->finish();
+
+  const detail::JobTotals& t = pipeline.totals();
+  JobSummary summary;
+  summary.duration_s = t.last_t_s;
+  summary.samples = t.samples;
+  summary.peak_deflection_m = std::sqrt(t.deflection2);  // sqrt is monotonic and correctly rounded:
+  summary.peak_correction_m = std::sqrt(t.correction2);  // the same numbers as a norm per sample
+  summary.peak_force_N = std::sqrt(t.force2);
+  summary.peak_joint_velocity_rad_s = t.joint_velocity;
+  summary.peak_joint_acceleration_rad_s2 = t.joint_acceleration;
+  summary.samples_outside_grid = t.outside_grid;
   return summary;
 }
 

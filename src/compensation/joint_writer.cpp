@@ -6,6 +6,7 @@
 #include <cmath>
 #include <algorithm>
 #include <cstring>
+#include <vector>
 
 #include "stiffpath/core/atomic_file.hpp"
 #include "stiffpath/core/error.hpp"
@@ -18,52 +19,38 @@ OutputFormat parse_output_format(const std::string& text) {
   throw Error("output format '" + text + "' is not one of csv, bin");
 }
 
-void append_fixed(std::string& out, double value, int decimals) {
-  static constexpr std::array<double, 10> kPow = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
-  const auto scaled = static_cast<long long>(std::llround(value * kPow[static_cast<std::size_t>(decimals)]));
-  unsigned long long magnitude = scaled < 0 ? 0ULL - static_cast<unsigned long long>(scaled)
-                                            : static_cast<unsigned long long>(scaled);
-  char digits[24];
-  int n = 0;
-  do {
-    digits[n++] = static_cast<char>('0' + magnitude % 10);
-    magnitude /= 10;
-  } while (magnitude != 0 || n <= decimals);
-  if (scaled < 0) out.push_back('-');
-  for (int i = n - 1; i >= 0; --i) {
-    out.push_back(digits[i]);
-    if (i == decimals && decimals > 0) out.push_back('.');
-  }
-}
-
 namespace {
 constexpr std::size_t kFlushBytes = 1 << 20;
 
+// Rows are formatted straight into a fixed buffer that goes to the file whenever it passes kFlushBytes.
 class CsvWriter final : public JointWriter {
  public:
-  explicit CsvWriter(const std::string& path) : file_(path) {
-    buffer_.reserve(kFlushBytes + 4096);
-    buffer_.append(kJointCsvHeader).push_back('\n');
+  explicit CsvWriter(const std::string& path) : file_(path), buffer_(kFlushBytes + kMaxRowChars) {
+    const std::string header = std::string(kJointCsvHeader) + "\n";
+    file_.stream().write(header.data(), static_cast<std::streamsize>(header.size()));
   }
   void write(const JointCommand& c) override {
-    append_fixed(buffer_, c.t_s, 6);
+    char* p = buffer_.data() + used_;
+    p = write_fixed(p, c.t_s, 6);
     for (double v : {c.q_rad.x(), c.q_rad.y(), c.qd_rad_s.x(), c.qd_rad_s.y()}) {
-      buffer_.push_back(',');
-      append_fixed(buffer_, v, 9);
+      *p++ = ',';
+      p = write_fixed(p, v, 9);
     }
-    buffer_.append(c.laser_on ? ",1" : ",0");
+    *p++ = ',';
+    *p++ = c.laser_on ? '1' : '0';
     for (double v : {c.target_m.x(), c.target_m.y(), c.command_m.x(), c.command_m.y()}) {
-      buffer_.push_back(',');
-      append_fixed(buffer_, v * 1e3, 6);
+      *p++ = ',';
+      p = write_fixed(p, v * 1e3, 6);
     }
     for (double v : {c.force_N.x(), c.force_N.y()}) {
-      buffer_.push_back(',');
-      append_fixed(buffer_, v, 4);
+      *p++ = ',';
+      p = write_fixed(p, v, 4);
     }
-    buffer_.push_back(',');
-    append_fixed(buffer_, c.line, 0);
-    buffer_.push_back('\n');
-    if (buffer_.size() >= kFlushBytes) flush();
+    *p++ = ',';
+    p = write_fixed(p, c.line, 0);
+    *p++ = '\n';
+    used_ = static_cast<std::size_t>(p - buffer_.data());
+    if (used_ >= kFlushBytes) flush();
   }
   void finish() override {
     flush();
@@ -71,12 +58,14 @@ class CsvWriter final : public JointWriter {
   }
 
  private:
+  static constexpr std::size_t kMaxRowChars = 13 * (kMaxFixedChars + 1) + 2;  // 13 cells, separators, laser
   void flush() {
-    file_.stream().write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
-    buffer_.clear();
+    file_.stream().write(buffer_.data(), static_cast<std::streamsize>(used_));
+    used_ = 0;
   }
   core::AtomicFile file_;
-  std::string buffer_;
+  std::vector<char> buffer_;
+  std::size_t used_ = 0;
 };
 
 template <typename T>
@@ -90,19 +79,18 @@ void put(char*& p, T value) {
   p += sizeof(T);
 }
 
+// Records are encoded straight into a fixed buffer of whole records that goes to the file when full.
 class BinaryWriter final : public JointWriter {
  public:
-  BinaryWriter(const std::string& path, double rate_hz, const std::string& mechanism) : file_(path) {
-    buffer_.reserve(kFlushBytes + kBinaryRecordBytes);
+  BinaryWriter(const std::string& path, double rate_hz, const std::string& mechanism)
+      : file_(path), buffer_(kBufferRecords * kBinaryRecordBytes), rate_hz_(rate_hz), mechanism_(mechanism) {
     std::array<char, kBinaryHeaderBytes> header{};
     header_into(header, rate_hz, mechanism, 0);
     file_.stream().write(header.data(), header.size());
-    rate_hz_ = rate_hz;
-    mechanism_ = mechanism;
   }
   void write(const JointCommand& c) override {
-    std::array<char, kBinaryRecordBytes> record{};
-    char* p = record.data();
+    if (used_ == buffer_.size()) flush();
+    char* p = buffer_.data() + used_;
     for (double v : {c.t_s, c.q_rad.x(), c.q_rad.y(), c.qd_rad_s.x(), c.qd_rad_s.y(), c.qdd_rad_s2.x(),
                      c.qdd_rad_s2.y(), c.target_m.x(), c.target_m.y(), c.command_m.x(), c.command_m.y(),
                      c.force_N.x(), c.force_N.y()}) {
@@ -110,9 +98,9 @@ class BinaryWriter final : public JointWriter {
     }
     put(p, static_cast<std::int32_t>(c.line));
     put(p, static_cast<std::uint8_t>(c.laser_on ? 1 : 0));
-    buffer_.append(record.data(), record.size());
+    std::memset(p, 0, 3);  // padding
+    used_ += kBinaryRecordBytes;
     ++count_;
-    if (buffer_.size() >= kFlushBytes) flush();
   }
   void finish() override {
     flush();
@@ -124,6 +112,7 @@ class BinaryWriter final : public JointWriter {
   }
 
  private:
+  static constexpr std::size_t kBufferRecords = kFlushBytes / kBinaryRecordBytes;
   static void header_into(std::array<char, kBinaryHeaderBytes>& h, double rate_hz, const std::string& mechanism,
                           std::uint64_t count) {
     char* p = h.data();
@@ -136,11 +125,12 @@ class BinaryWriter final : public JointWriter {
     std::memcpy(p, mechanism.data(), std::min<std::size_t>(mechanism.size(), 31));
   }
   void flush() {
-    file_.stream().write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
-    buffer_.clear();
+    file_.stream().write(buffer_.data(), static_cast<std::streamsize>(used_));
+    used_ = 0;
   }
   core::AtomicFile file_;
-  std::string buffer_;
+  std::vector<char> buffer_;
+  std::size_t used_ = 0;
   double rate_hz_ = 0.0;
   std::string mechanism_;
   std::uint64_t count_ = 0;

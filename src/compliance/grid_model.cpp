@@ -1,6 +1,7 @@
 // GridModel: bilinear interpolation of per-node compliance (eq. 4.12) and the thesis's bilinear model.
 #include "stiffpath/compliance/grid_model.hpp"
 
+#include <algorithm>
 #include <fmt/format.h>
 
 #include "stiffpath/core/error.hpp"
@@ -16,20 +17,44 @@ GridModel::GridModel(std::string method, Grid grid, std::vector<GridNode> nodes)
     compliance_.push_back(n.compliance);
     offset_.push_back(n.offset);
   }
+  for (std::size_t i = 0; i + 1 < grid_.xs.size(); ++i) inverse_dx_.push_back(1.0 / (grid_.xs[i + 1] - grid_.xs[i]));
+  for (std::size_t j = 0; j + 1 < grid_.ys.size(); ++j) inverse_dy_.push_back(1.0 / (grid_.ys[j + 1] - grid_.ys[j]));
 }
+
+namespace {
+// Index of the cell [lines[k], lines[k+1]] holding v (edge cells beyond the ends); grids have a
+// handful of lines, so a linear scan beats a binary search.
+std::size_t cell_index(const std::vector<double>& lines, double v) noexcept {
+  const std::size_t last = lines.size() - 2;
+  std::size_t k = 0;
+  while (k < last && v >= lines[k + 1]) ++k;
+  return k;
+}
+}  // namespace
 
 template <typename T>
 T GridModel::interpolate(const Vec2& p, const std::vector<T>& values) const noexcept {
-  int i = 0, j = 0;
-  double tx = 0.0, ty = 0.0;
-  const Vec2 q = outside_policy() == OutsidePolicy::extrapolate ? p : bounds_.clamp(p);
-  grid_.locate(q, i, j, tx, ty);
-  const auto at = [&](int di, int dj) -> const T& { return values[static_cast<std::size_t>(grid_.node(i + di, j + dj))]; };
+  const bool clamp = outside_policy() != OutsidePolicy::extrapolate;
+  const double x = clamp ? std::clamp(p.x(), bounds_.x_min, bounds_.x_max) : p.x();
+  const double y = clamp ? std::clamp(p.y(), bounds_.y_min, bounds_.y_max) : p.y();
+  const std::size_t i = cell_index(grid_.xs, x), j = cell_index(grid_.ys, y), ny = grid_.ys.size();
+  const double tx = (x - grid_.xs[i]) * inverse_dx_[i], ty = (y - grid_.ys[j]) * inverse_dy_[j];
   // Eq. 4.12: [x2 − x, x − x1] · [Δ11 Δ12; Δ21 Δ22] · [y2 − y; y − y1] / ((x2 − x1)(y2 − y1)).
-  return T((1 - tx) * (1 - ty) * at(0, 0) + (1 - tx) * ty * at(0, 1) + tx * (1 - ty) * at(1, 0) + tx * ty * at(1, 1));
+  const double w00 = (1 - tx) * (1 - ty), w01 = (1 - tx) * ty, w10 = tx * (1 - ty), w11 = tx * ty;
+  const T& v00 = values[i * ny + j];
+  const T& v01 = values[i * ny + j + 1];
+  const T& v10 = values[(i + 1) * ny + j];
+  const T& v11 = values[(i + 1) * ny + j + 1];
+  T out;
+  for (Eigen::Index k = 0; k < out.size(); ++k) out(k) = w00 * v00(k) + w01 * v01(k) + w10 * v10(k) + w11 * v11(k);
+  return out;
 }
 
 Mat2 GridModel::compliance(const Vec2& p) const noexcept { return interpolate(p, compliance_); }
+
+void GridModel::compliance_batch(std::span<const Vec2> points, std::span<Mat2> out) const noexcept {
+  for (std::size_t k = 0; k < points.size(); ++k) out[k] = interpolate(points[k], compliance_);
+}
 
 Vec2 GridModel::offset(const Vec2& p) const noexcept { return interpolate(p, offset_); }
 

@@ -37,6 +37,10 @@ Vec2 GridBounds::clamp(const Vec2& p) const noexcept {
   return {std::clamp(p.x(), x_min, x_max), std::clamp(p.y(), y_min, y_max)};
 }
 
+void Model::compliance_batch(std::span<const Vec2> points, std::span<Mat2> out) const noexcept {
+  for (std::size_t k = 0; k < points.size(); ++k) out[k] = compliance(points[k]);
+}
+
 Vec2 Model::offset(const Vec2& /*p*/) const noexcept { return Vec2::Zero(); }
 
 }  // namespace stiffpath::compliance

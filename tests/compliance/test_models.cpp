@@ -143,6 +143,40 @@ TEST(CrossValidation, BilinearIsExactOnABilinearField) {
   EXPECT_LT(report.methods[0].max_um, 1e-6);
 }
 
+TEST(GridModel, BatchEqualsOnePointAtATimeAndEquation412ByHand) {
+  // A non-uniform 3 × 4 grid with distinct nodes; points inside, on the lines and outside.
+  Grid grid{{0.17, 0.20, 0.27}, {-0.07, -0.01, 0.03, 0.08}};
+  std::vector<GridNode> nodes;
+  for (double x : grid.xs) {
+    for (double y : grid.ys) {
+      Mat2 c;
+      c << 1.0 + 7 * x, 0.3 * y, -0.2 * y + x, 2.0 + 40 * x * y;
+      nodes.push_back({"n", c * 1e-6, Vec2(x, y) * 1e-5, {}});
+    }
+  }
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> ux(0.15, 0.29), uy(-0.09, 0.10);
+  for (OutsidePolicy policy : {OutsidePolicy::clamp, OutsidePolicy::extrapolate}) {
+    GridModel model("bilinear", grid, nodes);
+    model.set_outside_policy(policy);
+    std::vector<Vec2> points{{0.20, -0.01}, {0.17, 0.08}, {0.27, -0.07}};
+    for (int i = 0; i < 500; ++i) points.emplace_back(ux(rng), uy(rng));
+    std::vector<Mat2> batch(points.size());
+    model.compliance_batch(points, batch);
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      EXPECT_EQ(batch[k], model.compliance(points[k])) << k;
+      // Eq. 4.12 with divisions, from the grid's own cell lookup.
+      const Vec2 q = policy == OutsidePolicy::clamp ? model.bounds().clamp(points[k]) : points[k];
+      int i = 0, j = 0;
+      double tx = 0, ty = 0;
+      grid.locate(q, i, j, tx, ty);
+      const auto at = [&](int di, int dj) { return nodes[static_cast<std::size_t>(grid.node(i + di, j + dj))].compliance; };
+      const Mat2 by_hand = (1 - tx) * (1 - ty) * at(0, 0) + (1 - tx) * ty * at(0, 1) + tx * (1 - ty) * at(1, 0) + tx * ty * at(1, 1);
+      EXPECT_LT((batch[k] - by_hand).cwiseAbs().maxCoeff(), 1e-20) << k;
+    }
+  }
+}
+
 TEST(ModelFile, RoundTripsEveryMethod) {
   const auto table = test::synthetic_table([](const Vec2& p) { return known_physical()->compliance(p); },
                                            [](const Vec2& p) { return Vec2(p.y() * 1e-4, 2e-6); }, 1e-6, 9);

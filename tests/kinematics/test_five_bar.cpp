@@ -136,6 +136,24 @@ TEST(FiveBar, JacobianFromInverseAndJacobianDotFromJacobianMatchTheDirectForms) 
   }
 }
 
+TEST(FiveBar, RealTimeInverseAgreesWithCheckReachAndTheConditionAtTheRadius) {
+  // solve_inverse(p, J) does the reach check itself; over the whole plane around the robot it must
+  // refuse exactly what check_reach() refuses and report the same condition number.
+  const FiveBar robot(kL);
+  std::mt19937_64 rng(kSeed + 11);
+  std::uniform_real_distribution<double> u(-0.32, 0.32);
+  for (int i = 0; i < 20000; ++i) {
+    const Vec2 p{u(rng), u(rng)};
+    Mat2 J;
+    const InverseResult r = robot.solve_inverse(p, J);
+    ASSERT_EQ(r.status, robot.check_reach(p)) << p.transpose();
+    if (r.status != Reach::ok) continue;
+    ASSERT_NEAR(r.condition_number, robot.condition_number_at_radius(p.norm()), 1e-14 * r.condition_number);
+    const double phi = std::atan2(p.y(), p.x()), eta = std::acos(p.norm() / (2 * kL));  // eq. 2.2
+    ASSERT_LT((r.q - Vec2(phi + eta, phi - eta)).cwiseAbs().maxCoeff(), 1e-15);
+  }
+}
+
 TEST(FiveBar, ClosedFormConditionNumberMatchesSvd) {
   const FiveBar robot(kL);
   std::mt19937_64 rng(kSeed + 5);

@@ -26,7 +26,7 @@ struct CompensatorOptions {
 //! ṗ_cmd = ṗ + k·m·(C·j + Ċ·a) and p̈_cmd = p̈ + k·m·(C·s + 2·Ċ·j + C̈·a), with Ċ, C̈ the model's
 //! rates of change along the local motion (central differences of C at p ± v·h + a·h²/2, points
 //! ~0.1 mm apart) and s the snap (zero inside jerk-limited phases). step() is noexcept, does not
-//! allocate, lock or throw, and takes constant time (three model evaluations and one IK).
+//! allocate, lock or throw, and takes constant time (one call for the model at three points, one IK).
 class Compensator {
  public:
   //! Keeps the model alive; throws stiffpath::Error for a non-finite or negative gain or a null model.
@@ -45,6 +45,7 @@ class Compensator {
   std::shared_ptr<const compliance::Model> model_;
   CompensatorOptions options_;
   double effective_gain_;
+  compliance::GridBounds bounds_;  // the model's rectangle, asked once (a model's bounds never change)
 };
 
 }  // namespace stiffpath::compensation

@@ -5,6 +5,7 @@
 #include <memory>
 #include <string>
 
+#include "stiffpath/compensation/fixed_format.hpp"
 #include "stiffpath/compensation/samples.hpp"
 
 namespace stiffpath::compensation {
@@ -40,10 +41,5 @@ class JointWriter {
 //! A writer for `path` in `format`; `rate_hz` and `mechanism` go into the binary header.
 std::unique_ptr<JointWriter> make_joint_writer(OutputFormat format, const std::string& path, double rate_hz,
                                                const std::string& mechanism);
-
-//! Appends `value` with `decimals` digits after the point (fixed-point, no exponent, "-0" avoided).
-//! About 10× faster than printf("%.*f") for the magnitudes in a joint file; |value|·10^decimals must stay
-//! below 9.2e18.
-void append_fixed(std::string& out, double value, int decimals);
 
 }  // namespace stiffpath::compensation

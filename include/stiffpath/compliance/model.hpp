@@ -3,6 +3,7 @@
 
 #include <memory>
 #include <nlohmann/json_fwd.hpp>
+#include <span>
 #include <string>
 
 #include "stiffpath/kinematics/types.hpp"
@@ -49,6 +50,10 @@ class Model {
   [[nodiscard]] virtual std::string method() const = 0;
   //! Compliance matrix ∂Δ/∂F at p (m/N), with the outside policy applied (error acts as clamp).
   [[nodiscard]] virtual Mat2 compliance(const Vec2& p) const noexcept = 0;
+  //! compliance() at several points in one call (the compensator asks for p and its two neighbours
+  //! along the motion every sample); `out` must be at least as long as `points`. The default calls
+  //! compliance() per point; a model may share work between the points but gives the same values.
+  virtual void compliance_batch(std::span<const Vec2> points, std::span<Mat2> out) const noexcept;
   //! Zero-force deflection at p (m); zero for models without intercepts.
   [[nodiscard]] virtual Vec2 offset(const Vec2& p) const noexcept;
   //! The rectangle where the model was measured.

@@ -31,7 +31,11 @@ class FiveBar final : public Mechanism {
   //! unchanged unless the status is ok. For the real-time path.
   [[nodiscard]] InverseResult solve_inverse(const Vec2& p, Mat2& jacobian) const noexcept;
   //! J̇ from J: each column of J rotates with its joint, J̇ = R90·J·diag(q̇).
-  [[nodiscard]] static Mat2 jacobian_dot_from(const Mat2& jacobian, const Vec2& qd) noexcept;
+  [[nodiscard]] static Mat2 jacobian_dot_from(const Mat2& jacobian, const Vec2& qd) noexcept {
+    Mat2 Jd;
+    Jd << -jacobian(1, 0) * qd.x(), -jacobian(1, 1) * qd.y(), jacobian(0, 0) * qd.x(), jacobian(0, 1) * qd.y();
+    return Jd;
+  }
   //! J = l [−sin θ1, −sin θ2; cos θ1, cos θ2].
   [[nodiscard]] Mat2 jacobian(const Vec2& q) const noexcept override;
   //! J̇ = l [−cos θ1 θ̇1, −cos θ2 θ̇2; −sin θ1 θ̇1, −sin θ2 θ̇2].
@@ -47,6 +51,7 @@ class FiveBar final : public Mechanism {
 
  private:
   double l_;
+  double inverse_2l_;  // 1 / (2l), for the real-time inverse
   SingularityMargin margin_;
 };
 

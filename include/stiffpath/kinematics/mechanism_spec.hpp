@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
@@ -53,7 +54,18 @@ nlohmann::json to_json(const MechanismSpec& spec);
 enum class JointCheck { ok, position, velocity, acceleration };
 
 //! Checks a joint state against the limits; `joint` receives the index of the first violation.
-JointCheck check_joint_limits(const MechanismSpec& spec, const Vec2& q, const Vec2& qd, const Vec2& qdd,
-                              int& joint) noexcept;
+//! Inline: the compensator calls it on every sample.
+inline JointCheck check_joint_limits(const MechanismSpec& spec, const Vec2& q, const Vec2& qd, const Vec2& qdd,
+                                     int& joint) noexcept {
+  for (int i = 0; i < 2; ++i) {
+    const JointLimit& lim = spec.joints[static_cast<std::size_t>(i)];
+    joint = i;
+    if (!(q[i] >= lim.min_rad && q[i] <= lim.max_rad)) return JointCheck::position;
+    if (!(std::abs(qd[i]) <= lim.max_velocity_rad_s)) return JointCheck::velocity;
+    if (!(std::abs(qdd[i]) <= lim.max_acceleration_rad_s2)) return JointCheck::acceleration;
+  }
+  joint = -1;
+  return JointCheck::ok;
+}
 
 }  // namespace stiffpath::kinematics
