@@ -31,9 +31,8 @@ TaskSample to_task_sample(const motion::TrajectorySample& s) noexcept {
   return t;
 }
 
-namespace {
 // The refusal of one sample as an error message naming the quantity, its value and its limit.
-[[noreturn]] void refuse(const JointCommand& c, const Compensator& comp, const std::string& job) {
+void throw_refusal(const JointCommand& c, const Compensator& comp, const std::string& job) {
   const SourceLocation where{job, c.line};
   const std::string when = fmt::format("t = {:.4f} s", c.t_s);
   const auto& spec = comp.mechanism();
@@ -63,7 +62,6 @@ namespace {
   }
   throw Error(where, when + ": " + describe(c.status));
 }
-}  // namespace
 
 JobSummary run_job(motion::SampleSource& source, const Compensator& compensator, JointWriter* writer,
                    const std::string& job_label, double rate_hz, AccelerationSource acceleration,
@@ -114,7 +112,7 @@ JobSummary run_job(motion::SampleSource& source, const Compensator& compensator,
     pipeline.release(block, count);
   }
   pipeline.close();
-  if (pipeline.refusal()) refuse(*pipeline.refusal(), compensator, job_label);
+  if (pipeline.refusal()) throw_refusal(*pipeline.refusal(), compensator, job_label);
   if (pipeline.writer_error()) std::rethrow_exception(pipeline.writer_error());
   if (planning_error) std::rethrow_exception(planning_error);
   if (writer) writer->finish();

@@ -5,6 +5,7 @@
 #include <map>
 #include <sstream>
 
+#include "stiffpath/compensation/job.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/core/units.hpp"
 #include "stiffpath/kinematics/mechanism_spec.hpp"
@@ -55,10 +56,7 @@ RunResult run_once(const RunSpec& spec, const TwinModels& models, const Experime
     const auto sample = stream.next();
     if (!sample) return std::nullopt;
     const compensation::JointCommand c = compensator.step(compensation::to_task_sample(*sample));
-    if (c.status != compensation::Status::ok) {
-      throw Error(fmt::format("{}:{}: t = {:.4f} s: command refused: {}", label, c.line, c.t_s,
-                              compensation::describe(c.status)));
-    }
+    if (c.status != compensation::Status::ok) compensation::throw_refusal(c, compensator, label);
     compensation::JointRecord r;
     r.t_s = c.t_s;
     r.q_rad = c.q_rad;

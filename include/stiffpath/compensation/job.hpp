@@ -44,6 +44,10 @@ JobSummary run_job(motion::SampleSource& source, const Compensator& compensator,
                    const std::string& job_label, double rate_hz,
                    AccelerationSource acceleration = AccelerationSource::analytic, const Progress& progress = {});
 
+//! Throws the stiffpath::Error for a refused command `c` (status not ok): "<job>:<line>: t = … s:
+//! <quantity> <value> against <limit>", the message run_job gives, for other loops over step().
+[[noreturn]] void throw_refusal(const JointCommand& c, const Compensator& compensator, const std::string& job_label);
+
 //! The compensation input for one planned sample (snap 0: jerk-limited profiles have none a.e.).
 TaskSample to_task_sample(const motion::TrajectorySample& sample) noexcept;
 
