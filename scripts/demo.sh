@@ -21,6 +21,12 @@ awk -F, 'NR == FNR { if (FNR > 1) { a[FNR] = $2; b[FNR] = $3 } next }
          END { printf "theta1: %.1f urad (at t = %s s), theta2: %.1f urad (at t = %s s)\n", m1 * 1e6, t1, m2 * 1e6, t2 }' \
     "$out/triangle_plain.csv" "$out/triangle_compensated.csv"
 echo
+echo "== what the robot would mark: both command sets on the digital twin (compliant tip, 20 kHz)"
+echo "-- without compensation"
+"$stiffpath" simulate "$out/triangle_plain.csv" --sides 3
+echo "-- with compensation"
+"$stiffpath" simulate "$out/triangle_compensated.csv" --sides 3
+echo
 echo "== which compliance model to trust: leave-one-out cross-validation on the thesis's OC data"
 "$stiffpath" cv thesis --mechanism oc
 echo
