@@ -1,6 +1,7 @@
 // End to end: `stiffpath run` → `stiffpath simulate` on the y motion, and `stiffpath experiment` on a reduced matrix.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -37,6 +38,33 @@ TEST(CliSimulate, CompensatedYMotionTracksBetter) {
   EXPECT_LT(std::abs(on["length_mm"].get<double>() - 150.0), 0.3 * (off["length_mm"].get<double>() - 150.0));
   EXPECT_LT(on["max_deviation_mm"].get<double>(), 0.5 * off["max_deviation_mm"].get<double>());
   EXPECT_LT(on["path_accuracy_mm"].get<double>(), 0.5 * off["path_accuracy_mm"].get<double>());
+}
+
+// The thesis's loop closed: the twin's mark drawn as a 1200 dpi scan and measured by `scan` gives the
+// length `simulate` measured on the mark's points (hooked ends included).
+TEST(CliSimulate, MarkRenderedAsAScanMeasuresTheSameLength) {
+  TempDir dir;
+  const std::string job = std::string(STIFFPATH_SOURCE_DIR) + "/examples/y_motion.gcode";
+  ASSERT_EQ(run_cli("run " + job + " -o j.csv --accel 5g --no-compensation", dir.path()).exit_code, 0);
+  const auto sim = run_cli("simulate j.csv --marks-csv marks.csv --json", dir.path());
+  ASSERT_EQ(sim.exit_code, 0) << sim.err;
+  const auto metrics = nlohmann::json::parse(sim.out);
+  std::ifstream marks(dir.path() / "marks.csv");
+  std::string line;
+  std::getline(marks, line);
+  EXPECT_EQ(line, "x_mm,y_mm");
+  std::size_t rows = 0;
+  double y_max = -1e9;
+  for (; std::getline(marks, line); ++rows) y_max = std::max(y_max, std::stod(line.substr(line.find(',') + 1)));
+  EXPECT_EQ(rows, metrics["marked_points"].get<std::size_t>());
+  EXPECT_NEAR(y_max, 75.0, 1e-6);  // the start (y = −75 mm on the robot) is at +75 mm, y down
+  ASSERT_EQ(run_cli("render-scan --path-csv marks.csv scan.png", dir.path()).exit_code, 0);
+  const auto scan = run_cli("scan scan.png --json", dir.path());
+  ASSERT_EQ(scan.exit_code, 0) << scan.err;
+  const auto measured = nlohmann::json::parse(scan.out);
+  EXPECT_NEAR(measured["length_mm"].get<double>(), metrics["length_mm"].get<double>(), 0.010);
+  EXPECT_GT(metrics["length_mm"].get<double>(), 150.05);  // the hooked, overshooting mark this is about
+  EXPECT_TRUE(measured["warnings"].empty()) << measured["warnings"];
 }
 
 TEST(CliSimulate, BadFileIsAnError) {
