@@ -90,11 +90,19 @@ std::vector<CorneringDeviation> iso9283_cornering(std::span<const Point2> comman
   std::size_t cursor = 0;
   for (const auto& corner : find_corners(command, options)) {
     const auto inside = [&](std::size_t i) { return (attained[i] - corner.at).norm() < corner.reach_m; };
+    CorneringDeviation d;
+    d.corner = corner.at;
+    d.turn_rad = corner.turn_rad;
     std::size_t first = cursor;
     while (first < attained.size() && !inside(first)) ++first;
-    if (first == attained.size()) {
-      throw Error(fmt::format("cornering: the attained path never comes within {:.3f} mm of the corner at ({:.3f}, {:.3f}) mm",
-                              corner.reach_m * 1e3, corner.at.x() * 1e3, corner.at.y() * 1e3));
+    if (first == attained.size()) {  // missed by more than the neighbourhood: CR only, from the whole path
+      d.reached = false;
+      d.round_off_m = (attained[0] - corner.at).norm();
+      for (std::size_t i = 1; i < attained.size(); ++i) {
+        d.round_off_m = std::min(d.round_off_m, segment_distance(corner.at, attained[i - 1], attained[i]));
+      }
+      result.push_back(d);
+      continue;
     }
     std::size_t last = first;
     while (last + 1 < attained.size() && inside(last + 1)) ++last;
@@ -103,9 +111,6 @@ std::vector<CorneringDeviation> iso9283_cornering(std::span<const Point2> comman
     // the incoming direction's part normal to it (a reversal overshoots along the incoming direction).
     Point2 outside = corner.in - corner.in.dot(corner.out) * corner.out;
     outside = outside.norm() > 1e-6 ? Point2(outside.normalized()) : corner.in;
-    CorneringDeviation d;
-    d.corner = corner.at;
-    d.turn_rad = corner.turn_rad;
     d.round_off_m = (attained[first] - corner.at).norm();
     for (std::size_t i = first; i <= last; ++i) {
       if (i > first) d.round_off_m = std::min(d.round_off_m, segment_distance(corner.at, attained[i - 1], attained[i]));

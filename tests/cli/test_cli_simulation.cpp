@@ -67,6 +67,20 @@ TEST(CliSimulate, MarkRenderedAsAScanMeasuresTheSameLength) {
   EXPECT_TRUE(measured["warnings"].empty()) << measured["warnings"];
 }
 
+// A CAM job's lettering has sharp turns between pieces far shorter than the tip's deflection; the
+// mark misses some of them, which the cornering metrics report instead of failing the simulation.
+TEST(CliSimulate, RealisticJobWithTinyCornersIsMeasured) {
+  TempDir dir;
+  const std::string job = std::string(STIFFPATH_SOURCE_DIR) + "/examples/nameplate.gcode";
+  ASSERT_EQ(run_cli("run " + job + " -o j.csv --accel 2g", dir.path()).exit_code, 0);
+  const auto sim = run_cli("simulate j.csv --json", dir.path());
+  ASSERT_EQ(sim.exit_code, 0) << sim.err;
+  const auto m = nlohmann::json::parse(sim.out);
+  EXPECT_GT(m["corners"].get<int>(), 10);
+  EXPECT_GT(m["cornering_round_off_mm"].get<double>(), 0.0);
+  EXPECT_LT(m["cornering_round_off_mm"].get<double>(), 1.0);
+}
+
 TEST(CliSimulate, BadFileIsAnError) {
   TempDir dir;
   std::ofstream(dir.path() / "bad.csv") << "t_s,theta1_rad\n0,abc\n";

@@ -92,12 +92,21 @@ TEST(Cornering, StraightOrGentlyCurvedCommandHasNoCorners) {
   EXPECT_TRUE(iso9283_cornering(arc, arc).empty());
 }
 
+TEST(Cornering, MissedCornerHasItsDistanceAndNoOvershoot) {
+  const auto command = l_shape();
+  const std::vector<Point2> elsewhere{{0.5, 0.5}, {0.6, 0.5}};  // far from the corner at (0.1, 0)
+  const auto c = iso9283_cornering(command, elsewhere);
+  ASSERT_EQ(c.size(), 1u);
+  EXPECT_FALSE(c[0].reached);
+  EXPECT_NEAR(c[0].round_off_m, std::hypot(0.4, 0.5), 1e-12);
+  EXPECT_EQ(c[0].overshoot_m, 0.0);
+  EXPECT_TRUE(iso9283_cornering(command, command)[0].reached);
+}
+
 TEST(Cornering, RefusesUnusableInput) {
   const auto command = l_shape();
   EXPECT_THROW(iso9283_cornering(command, std::vector<Point2>{{0.1, 0.0}}), Error);
   EXPECT_THROW(iso9283_cornering(std::vector<Point2>{{0.0, 0.0}}, command), Error);
-  const std::vector<Point2> elsewhere{{0.5, 0.5}, {0.6, 0.5}};
-  EXPECT_THROW(iso9283_cornering(command, elsewhere), Error);
   auto broken = command;
   broken[10].x() = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(iso9283_cornering(command, broken), Error);

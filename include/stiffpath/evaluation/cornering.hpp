@@ -16,6 +16,9 @@ struct CorneringDeviation {
   //! CO: how far the attained path goes outside the outgoing side's line near the corner (0 if never):
   //! the largest offset from that line on the side the incoming motion came from (inertia's side).
   double overshoot_m = 0.0;
+  //! Whether the attained path entered the corner's neighbourhood. If not, CR is its distance from
+  //! the corner (at least the neighbourhood's radius) and CO is 0: there is no overshoot to measure.
+  bool reached = true;
 };
 
 //! Options of the cornering evaluation.
@@ -35,7 +38,7 @@ struct CorneringOptions {
 //! the order marked) at each, in order along the command. Endpoints of the command are not corners,
 //! even when it closes on itself. Returns no entries for a command without sharp corners. Throws
 //! stiffpath::Error for fewer than two attained points, a command shorter than two distinct points,
-//! non-finite coordinates, or an attained path that never comes near a corner.
+//! or non-finite coordinates.
 std::vector<CorneringDeviation> iso9283_cornering(std::span<const Point2> command, std::span<const Point2> attained,
                                                   const CorneringOptions& options = {});
 

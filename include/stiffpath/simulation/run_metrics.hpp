@@ -15,7 +15,7 @@ struct RunMetrics {
   double path_accuracy_m = 0.0;      //!< ISO 9283 AT_p of the mark against the commanded path (100 normal planes)
   std::size_t corners = 0;           //!< sharp corners of the commanded path (0 for a line: the two below are then 0)
   double cornering_round_off_m = 0.0; //!< ISO 9283 CR, largest over the corners
-  double cornering_overshoot_m = 0.0; //!< ISO 9283 CO, largest over the corners
+  double cornering_overshoot_m = 0.0; //!< ISO 9283 CO, largest over the corners the mark reached
   double residual_vibration_m = 0.0; //!< max tip deflection after the robot stopped (SimulationResult)
   double peak_deflection_m = 0.0;    //!< max tip deflection during the job
 };
