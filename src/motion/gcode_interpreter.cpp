@@ -118,7 +118,15 @@ void GcodeInterpreter::set_laser(const GcodeBlock& b) {
       fixed_power_ = 1.0;
       warn(GcodeWarningKind::output_as_laser, b, "M62/M63 (synchronised digital output) are read as laser on at full power/off");
       break;
-    case 50: case 1070: case 630: laser_ = Laser::off; break;
+    case 1070:
+      laser_ = Laser::off;
+      warn(GcodeWarningKind::fan_as_laser, b, "M106/M107 (Marlin's fan output) are read as laser on/off, M106 S 0-255 as the power");
+      break;
+    case 630:
+      laser_ = Laser::off;
+      warn(GcodeWarningKind::output_as_laser, b, "M62/M63 (synchronised digital output) are read as laser on at full power/off");
+      break;
+    case 50: laser_ = Laser::off; break;
     default: break;
   }
 }
