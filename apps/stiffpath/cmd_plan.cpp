@@ -41,11 +41,11 @@ nlohmann::json warnings_json(const std::vector<motion::GcodeWarning>& warnings) 
 void check_size(const PlanArgs& a, const motion::PlanOptions& options) {
   const motion::PlanSize size = motion::measure_plan(a.job, options);
   if (size.samples <= a.max_samples) return;
-  throw Error(SourceLocation{a.job},
-              fmt::format("the plan has {} samples ({:.1f} s at {:g} Hz, about {:.1f} GB of CSV), more than the cap "
-                          "of {}; raise it with --max-samples",
-                          size.samples, size.duration_s, options.rate_hz,
-                          static_cast<double>(size.samples) * csv_row_bytes * 1e-9, a.max_samples));
+  const double bytes = static_cast<double>(size.samples) * csv_row_bytes;
+  const std::string csv = bytes < 1e9 ? fmt::format("{:.1f} MB", bytes * 1e-6) : fmt::format("{:.1f} GB", bytes * 1e-9);
+  throw Error(SourceLocation{a.job}, fmt::format("the plan has {} samples ({:.1f} s at {:g} Hz, about {} of CSV), more "
+                                                 "than the cap of {}; raise it with --max-samples",
+                                                 size.samples, size.duration_s, options.rate_hz, csv, a.max_samples));
 }
 
 void run_plan(const PlanArgs& a) {

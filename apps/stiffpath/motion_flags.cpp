@@ -72,7 +72,11 @@ void add_motion_flags(CLI::App* cmd, MotionFlags& a) {
 
 motion::PlanOptions plan_options(const MotionFlags& a) {
   motion::PlanOptions o;
-  o.limits.max_acceleration_m_s2 = units::parse_acceleration_m_s2(a.accel);
+  try {
+    o.limits.max_acceleration_m_s2 = units::parse_acceleration_m_s2(a.accel);
+  } catch (const Error& e) {
+    throw Error(std::string("--accel: ") + e.what());
+  }
   check("--accel", o.limits.max_acceleration_m_s2, motion::min_acceleration_limit_m_s2,
         motion::max_acceleration_limit_m_s2, "m/s^2");
   o.limits.max_jerk_m_s3 = a.jerk_m_s3.value_or(motion::default_jerk_m_s3(o.limits.max_acceleration_m_s2));
