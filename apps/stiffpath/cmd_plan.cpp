@@ -16,7 +16,7 @@ namespace stiffpath::cli {
 
 namespace {
 
-//! Default cap on the samples of one plan: 20 million, 2 h 47 min at 2 kHz, about 2.4 GB of CSV.
+//! Default cap on the samples of one plan: 20 million, 2 h 46 min 40 s at 2 kHz, about 2.4 GB of CSV.
 constexpr std::uint64_t default_max_samples = 20'000'000;
 //! Bytes of a typical CSV row (the x motion's rows average 110), for the size quoted in a refusal.
 constexpr double csv_row_bytes = 120.0;
@@ -99,7 +99,7 @@ void add_plan_command(CLI::App& app) {
   cmd->add_option("job", a->job, "G-code program (mm, robot frame unless --work-offset-mm)")->required();
   add_motion_flags(cmd, a->motion);
   cmd->add_option("-o,--output", a->output, "Write the samples to this CSV file");
-  cmd->add_option("--max-samples", a->max_samples, "Refuse a plan with more samples than this (2 h 47 min at 2 kHz)")
+  cmd->add_option("--max-samples", a->max_samples, "Refuse a plan with more samples than this (20 M: 2 h 46 min at 2 kHz)")
       ->capture_default_str();
   cmd->add_flag("--json", a->json, "Print the summary as JSON (errors too, on stderr)");
   cmd->callback([a] { run_plan(*a); });
