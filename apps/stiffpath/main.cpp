@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <set>
 #include <sstream>
 
 #include "commands.hpp"
@@ -28,11 +29,16 @@ std::string resolve_build(const std::string& mechanism) {
 
 namespace {
 
-// Whether the subcommand that ran (or one of its own subcommands) was given --json.
+std::set<const CLI::App*>& json_error_commands() {
+  static std::set<const CLI::App*> commands;
+  return commands;
+}
+
+// Whether a subcommand that ran (or one of its own) prints its errors as JSON and was given --json.
 bool json_requested(const CLI::App& app) {
   for (const CLI::App* sub : app.get_subcommands()) {
     const CLI::Option* json = sub->get_option_no_throw("--json");
-    if ((json != nullptr && json->count() > 0) || json_requested(*sub)) return true;
+    if ((json_error_commands().contains(sub) && json != nullptr && json->count() > 0) || json_requested(*sub)) return true;
   }
   return false;
 }
@@ -64,6 +70,8 @@ void report(const CLI::App& app, const stiffpath::Error& e) {
 }
 
 }  // namespace
+
+void enable_json_errors(const CLI::App* command) { json_error_commands().insert(command); }
 
 }  // namespace stiffpath::cli
 

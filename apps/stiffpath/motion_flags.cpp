@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <fmt/format.h>
 
+#include "commands.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/core/units.hpp"
 
@@ -41,6 +42,7 @@ std::optional<double> stop_dwell_s(const std::string& text) {
 }  // namespace
 
 void add_motion_flags(CLI::App* cmd, MotionFlags& a) {
+  enable_json_errors(cmd);  // a program's refusals are many: with --json they are one document
   a.max_velocity_mm_s = units::m_to_mm(motion::default_max_velocity_m_s);
   cmd->add_option("--accel", a.accel, "Acceleration limit, e.g. 5g or 49 (m/s^2)")->capture_default_str();
   cmd->add_option("--jerk", a.jerk_m_s3, "Jerk limit (m/s^3); default: accel / 5 ms");
