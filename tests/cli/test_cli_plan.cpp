@@ -264,9 +264,8 @@ TEST(CliPlan, RunTakesTheDialectFlagsAndPrintsTheWarnings) {
   EXPECT_EQ(ms.err, "warning: " + marlin.string() +
                         ":5: M106/M107 (Marlin's fan output) are read as laser on/off, M106 S 0-255 as the power (5 lines, "
                         "the first shown)\n");
-  const CliResult seconds = run_cli(job + "--json", dir.path());
-  ASSERT_EQ(seconds.exit_code, 0) << seconds.err;
-  EXPECT_NEAR(seconds.json()["duration_s"].get<double>() - ms.json()["duration_s"].get<double>(), 499.5, 1e-3);
+  // The dwell was read in milliseconds: in seconds alone it would last 500 s (CliPlanCam checks both).
+  EXPECT_LT(ms.json()["duration_s"].get<double>(), 20.0);
   const CliResult strict = run_cli(job + "--strict -o joints.csv", dir.path());
   EXPECT_EQ(strict.exit_code, 2);
   const std::string e = "error: " + marlin.string();
