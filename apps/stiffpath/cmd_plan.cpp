@@ -1,4 +1,5 @@
 // `stiffpath plan`: G-code to a jerk-limited trajectory sampled at 2 kHz (thesis §4.3, fig. 4.3), as CSV.
+#include <cstdint>
 #include <fmt/format.h>
 #include <memory>
 #include <optional>
@@ -15,15 +16,42 @@ namespace stiffpath::cli {
 
 namespace {
 
+//! Default cap on the samples of one plan: 20 million, 2 h 46 min 40 s at 2 kHz, about 2.4 GB of CSV.
+constexpr std::uint64_t default_max_samples = 20'000'000;
+//! Bytes of a typical CSV row (the x motion's rows average 110), for the size quoted in a refusal.
+constexpr double csv_row_bytes = 120.0;
+
 struct PlanArgs {
   std::string job;
   std::string output;
   bool json = false;
+  std::uint64_t max_samples = default_max_samples;
   MotionFlags motion;
 };
 
+nlohmann::json warnings_json(const std::vector<motion::GcodeWarning>& warnings) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& w : warnings) {
+    list.push_back({{"kind", motion::to_string(w.kind)}, {"message", w.message}, {"count", w.count}, {"first_line", w.first_line}});
+  }
+  return list;
+}
+
+// Plans without sampling first, so a job beyond the cap is refused before a sample is made.
+void check_size(const PlanArgs& a, const motion::PlanOptions& options) {
+  const motion::PlanSize size = motion::measure_plan(a.job, options);
+  if (size.samples <= a.max_samples) return;
+  const double bytes = static_cast<double>(size.samples) * csv_row_bytes;
+  const std::string csv = bytes < 1e9 ? fmt::format("{:.1f} MB", bytes * 1e-6) : fmt::format("{:.1f} GB", bytes * 1e-9);
+  throw Error(SourceLocation{a.job}, fmt::format("the plan has {} samples ({:.1f} s at {:g} Hz, about {} of CSV), more "
+                                                 "than the cap of {}; raise it with --max-samples",
+                                                 size.samples, size.duration_s, options.rate_hz, csv, a.max_samples));
+}
+
 void run_plan(const PlanArgs& a) {
-  const motion::PlanOptions options = plan_options(a.motion);
+  motion::PlanOptions options = plan_options(a.motion);
+  if (a.json) options.gcode.on_warnings = nullptr;  // they go into the JSON document
+  check_size(a, options);
   motion::TrajectoryStream stream(a.job, options);
   const motion::TrajectorySummary summary = a.output.empty()
                                                 ? motion::summarize(stream, options.rate_hz)
@@ -39,10 +67,13 @@ void run_plan(const PlanArgs& a) {
                 {"peak_acceleration_m_s2", tidy(summary.peak_acceleration_m_s2)},
                 {"peak_jerk_m_s3", tidy(summary.peak_jerk_m_s3)},
                 {"laser_on_s", tidy(summary.laser_on_s)},
+                {"laser_full_power_s", tidy(summary.laser_full_power_s)},
+                {"peak_power", tidy(summary.peak_power)},
                 {"max_velocity_m_s", tidy(options.limits.max_velocity_m_s)},
                 {"max_acceleration_m_s2", tidy(options.limits.max_acceleration_m_s2)},
                 {"max_jerk_m_s3", tidy(options.limits.max_jerk_m_s3)},
                 {"lookahead_peak_segments", planner.peak_window},
+                {"warnings", warnings_json(stream.warnings())},
                 {"output", a.output.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.output)}});
     return;
   }
@@ -54,7 +85,8 @@ void run_plan(const PlanArgs& a) {
   fmt::print("peaks:  v {:.1f} mm/s, a {:.3f} m/s^2 ({:.2f} g), j {:.1f} m/s^3\n", units::m_to_mm(summary.peak_velocity_m_s),
              summary.peak_acceleration_m_s2, summary.peak_acceleration_m_s2 / units::standard_gravity_m_s2,
              summary.peak_jerk_m_s3);
-  fmt::print("laser on {:.4f} s; the look-ahead held at most {} segment{}\n", summary.laser_on_s, planner.peak_window,
+  fmt::print("laser on {:.4f} s (peak power {:.1f} %, {:.4f} s at full power); the look-ahead held at most {} segment{}\n",
+             summary.laser_on_s, 100.0 * summary.peak_power, summary.laser_full_power_s, planner.peak_window,
              planner.peak_window == 1 ? "" : "s");
   if (!a.output.empty()) fmt::print("wrote {}\n", a.output);
 }
@@ -67,7 +99,9 @@ void add_plan_command(CLI::App& app) {
   cmd->add_option("job", a->job, "G-code program (mm, robot frame unless --work-offset-mm)")->required();
   add_motion_flags(cmd, a->motion);
   cmd->add_option("-o,--output", a->output, "Write the samples to this CSV file");
-  cmd->add_flag("--json", a->json, "Print the summary as JSON");
+  cmd->add_option("--max-samples", a->max_samples, "Refuse a plan with more samples than this (20 M: 2 h 46 min at 2 kHz)")
+      ->capture_default_str();
+  cmd->add_flag("--json", a->json, "Print the summary as JSON (errors too, on stderr)");
   cmd->callback([a] { run_plan(*a); });
 }
 
