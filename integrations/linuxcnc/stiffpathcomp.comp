@@ -16,19 +16,21 @@ already known, and the acceleration of c[k-1] comes from a centred second differ
   j = (c[k] - 3 c[k-1] + 3 c[k-2] - c[k-3]) / T³  (backward, centred at k-1.5).
 
 The step turns a into the D'Alembert force F = -m a, the predicted deflection Δ = C(p) F and the
-corrected joint angles IK(c - Δ); d[k-1] = b (IK(c[k-1] - Δ) - IK(c[k-1])) is the joint correction.
+corrected joint angles IK(c - Δ), checking reach and joint limits; with the blend factor b,
+d[k-1] = IK(c[k-1] - b Δ) - IK(c[k-1]) is the joint correction.
 The component adds (d[k-3] + 4 d[k-2] + d[k-1]) / 6 to the motor command and subtracts it from the
 motor feedback: the drive gets the B-spline of the corrected joint angles, exactly what LinuxCNC
 would send if its kinematics returned IK(c - Δ), and motion sees its own path.
 
 b is the blend factor: it follows enable × gain, changing by at most T / ramp-time per period, and
 starts moving five periods after enable rises (the command jumps when the machine is homed; the
-jump must leave the difference stencil first). For b = 1 the correction is the library's; for
-0 < b < 1 it is the joint-space blend, within 1e-6 degree of IK(c - bΔ) in the thesis workspace at 2 g.
+jump must leave the difference stencil first). Δ does not depend on the gain, so IK(c - bΔ) is what
+the library computes at gain b; the limits are checked at gain 1.
 
 If the step refuses (unreachable corrected target, a joint limit, a non-finite input), the
 component holds the last good command, raises *fault* and keeps holding until *reset* rises: wire
-*fault* into the E-stop chain. See docs/linuxcnc.md.
+*fault* into the E-stop chain. After the reset it starts afresh: the blend factor ramps in again
+from 0 five periods after the reset. See docs/linuxcnc.md.
 """;
 
 pin in float x_cmd "Cartesian X command, machine units (axis.x.pos-cmd)";
@@ -130,6 +132,18 @@ static void hold(struct __comp_state *__comp_inst) {
   active = 0;
 }
 
+/* A refused step: hold, and after the reset start afresh (blend 0, no past corrections). */
+static void refuse(struct __comp_state *__comp_inst, int why) {
+  status = why;
+  fault = 1;
+  refusals += 1;
+  hold(__comp_inst);
+  blend = 0.0;
+  enabled_periods = 0;
+  q_known = 0;
+  for (int r = 0; r < 3; ++r) d_deg[r][0] = d_deg[r][1] = 0.0;
+}
+
 FUNCTION(_) {
   const double T = fperiod;
   shift(c_m, 4);
@@ -169,16 +183,24 @@ FUNCTION(_) {
     double q0[2];
     int st = stiffpath_compensator_step(compensator, &s, &out);
     if (st == STIFFPATH_OK) st = stiffpath_inverse(kinematics, s.p_m, q0);
-    status = st;
     if (st != STIFFPATH_OK) {
-      fault = 1;
-      refusals += 1;
-      hold(__comp_inst);
+      refuse(__comp_inst, st);
       return;
+    }
+    status = STIFFPATH_OK;
+    /* The gain k < 1: the same Δ (it does not depend on k), p_cmd = p − kΔ; k = 1: the step's own angles. */
+    double q[2] = {out.q_rad[0], out.q_rad[1]};
+    if (blend != 1.0) {
+      const double target[2] = {s.p_m[0] - blend * out.deflection_m[0], s.p_m[1] - blend * out.deflection_m[1]};
+      st = stiffpath_inverse(kinematics, target, q);
+      if (st != STIFFPATH_OK) {
+        refuse(__comp_inst, st);
+        return;
+      }
     }
     for (int i = 0; i < 2; ++i) {
       q_deg[0][i] = q0[i] * DEG_PER_RAD;
-      d_deg[0][i] = blend * (out.q_rad[i] - q0[i]) * DEG_PER_RAD;
+      d_deg[0][i] = (q[i] - q0[i]) * DEG_PER_RAD;
     }
     deflection_x_um = out.deflection_m[0] * 1e6;
     deflection_y_um = out.deflection_m[1] * 1e6;

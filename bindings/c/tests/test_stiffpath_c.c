@@ -266,6 +266,47 @@ static void test_options(void) {
   stiffpath_compensator_free(strict);
 }
 
+/* LinuxCNC's stiffpathcomp runs the step at gain 1 and applies its live gain k as IK(p − k·Δ) with that
+ * step's Δ (Δ does not depend on the gain): the same joint angles as a compensator created with gain k. */
+static void test_gain_from_the_full_step(void) {
+  char error[256];
+  stiffpath_compensator *full = stiffpath_compensator_create("oc-gu", NULL, NULL, error, sizeof error);
+  CHECK(full != NULL);
+  if (!full) return;
+  const stiffpath_robot *robot = stiffpath_compensator_robot(full);
+  double worst_rad = 0.0, largest_rad = 0.0;
+  for (int g = 1; g <= 3; ++g) {
+    stiffpath_options o = stiffpath_default_options();
+    o.gain = 0.25 * g;
+    stiffpath_compensator *part = stiffpath_compensator_create("oc-gu", NULL, &o, error, sizeof error);
+    CHECK(part != NULL);
+    if (!part) continue;
+    for (int i = 0; i <= 10; ++i) {
+      for (int j = 0; j <= 10; ++j) {
+        for (int d = 0; d < 8; ++d) {
+          const double a = 2.0 * 9.80665, angle = d * PI / 4.0;
+          const stiffpath_task_sample s = sample_at(0.172132 + 0.01 * i, -0.075 + 0.015 * j, a * cos(angle), a * sin(angle));
+          stiffpath_joint_command f, p;
+          CHECK(stiffpath_compensator_step(full, &s, &f) == STIFFPATH_OK);
+          CHECK(stiffpath_compensator_step(part, &s, &p) == STIFFPATH_OK);
+          const double target[2] = {s.p_m[0] - o.gain * f.deflection_m[0], s.p_m[1] - o.gain * f.deflection_m[1]};
+          double q[2], q0[2];
+          CHECK(stiffpath_inverse(robot, target, q) == STIFFPATH_OK);
+          CHECK(stiffpath_inverse(robot, s.p_m, q0) == STIFFPATH_OK);
+          for (int k = 0; k < 2; ++k) {
+            worst_rad = fmax(worst_rad, fabs(q[k] - p.q_rad[k]));
+            largest_rad = fmax(largest_rad, fabs(p.q_rad[k] - q0[k]));
+          }
+        }
+      }
+    }
+    stiffpath_compensator_free(part);
+  }
+  CHECK(worst_rad <= 1e-13);
+  CHECK(largest_rad > 1e-4); /* 2 g moves the command by a visible amount */
+  stiffpath_compensator_free(full);
+}
+
 static void test_errors(const char *scratch_dir) {
   char error[512];
   CHECK(stiffpath_robot_load("/nonexistent/robot.json", error, sizeof error) == NULL);
@@ -330,6 +371,7 @@ int main(int argc, char **argv) {
   test_robot();
   test_step();
   test_options();
+  test_gain_from_the_full_step();
   test_errors(argc > 1 ? argv[1] : ".");
   test_status_text();
   if (failures) fprintf(stderr, "%d check(s) failed\n", failures);
