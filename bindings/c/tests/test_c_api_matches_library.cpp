@@ -1,6 +1,7 @@
 // The C step, forward and inverse return bit for bit what the C++ library returns for the same input.
 #include <gtest/gtest.h>
 
+#include <ostream>
 #include <random>
 #include <string>
 
@@ -18,6 +19,8 @@ struct Case {
   const char* model;
   double gain;
 };
+
+void PrintTo(const Case& c, std::ostream* os) { *os << c.robot << " with " << c.model << " at gain " << c.gain; }
 
 class CApi : public ::testing::TestWithParam<Case> {};
 
