@@ -42,7 +42,7 @@ pin out float joint.#.fb_out[2] "feedback for motion with the correction taken o
 pin in float joint.#.pos_cmd[2] "optional: motion's joint.N.pos-cmd, only for the lag-error check";
 pin out float joint.#.correction_deg[2] "correction added to the command this period";
 pin in bit enable "compensate (typically: all joints homed)";
-pin in float gain = 1.0 "gain k, 0..1";
+pin in float gain = 1.0 "gain k, used within 0..1";
 pin in bit reset "a rising edge clears fault";
 pin out bit active "the correction is being applied (blend factor > 0, no fault)";
 pin out bit fault "a step was refused: the command is held";
@@ -102,9 +102,10 @@ EXTRA_CLEANUP() {
   compensator = NULL;
 }
 
-/* The blend factor's next value: towards the target, at most T / ramp-time per period. */
+/* The blend factor's next value: towards the target (kept in [0, 1]), at most T / ramp-time per period. */
 static double next_blend(double b, double target, double T, double ramp) {
   if (!(target >= 0.0)) target = 0.0;
+  if (target > 1.0) target = 1.0;
   if (ramp <= 0.0) return target;
   const double step = T / ramp;
   if (target > b + step) return b + step;
