@@ -51,7 +51,8 @@ try:
     time.sleep(0.5)  # the compensation's blend factor ramps in after homing (0.1 s)
 
     with open(RECORD, "w") as record:
-        sampler = subprocess.Popen(["halsampler", "-t", "-c", "0"], stdout=record)
+        # at most 100 s of servo periods, whatever happens to the program
+        sampler = subprocess.Popen(["halsampler", "-t", "-c", "0", "-n", "200000"], stdout=record)
         time.sleep(0.3)
         subprocess.run(["halcmd", "sets", "record", "1"], check=True)
         command.mode(linuxcnc.MODE_AUTO)
