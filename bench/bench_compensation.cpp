@@ -31,7 +31,7 @@ std::vector<compensation::TaskSample> job_samples() {
 
 void BM_StepLatency(benchmark::State& state, const char* model_name) {
   const auto samples = job_samples();
-  const compensation::Compensator comp(kinematics::load_mechanism("oc-gu"),
+  const compensation::Compensator comp(kinematics::load_robot("oc-gu"),
                                        std::shared_ptr<const compliance::Model>(compliance::load_model(model_name).model.release()));
   std::vector<double> ns(samples.size());
   using clock = std::chrono::steady_clock;
@@ -59,7 +59,7 @@ BENCHMARK_CAPTURE(BM_StepLatency, physical, "thesis-oc-physical")->Iterations(1)
 
 void BM_StepThroughput(benchmark::State& state) {
   const auto samples = job_samples();
-  const compensation::Compensator comp(kinematics::load_mechanism("oc-gu"),
+  const compensation::Compensator comp(kinematics::load_robot("oc-gu"),
                                        std::shared_ptr<const compliance::Model>(compliance::load_model("thesis-oc").model.release()));
   std::size_t k = 0;
   for (auto _ : state) {
@@ -77,7 +77,7 @@ BENCHMARK(BM_StepThroughput);
 #include <fstream>
 #include <unistd.h>
 
-#include "stiffpath/compensation/job.hpp"
+#include "stiffpath/job/job.hpp"
 #include "stiffpath/motion/trajectory_stream.hpp"
 
 namespace {
@@ -94,17 +94,17 @@ std::string marking_job(int lines) {
   return path.string();
 }
 
-void BM_RunJob(benchmark::State& state, compensation::OutputFormat format) {
+void BM_RunJob(benchmark::State& state, job::OutputFormat format) {
   const std::string job = marking_job(static_cast<int>(state.range(0)));
   const auto out = std::filesystem::temp_directory_path() / ("stiffpath_bench_out_" + std::to_string(::getpid()));
-  const auto spec = kinematics::load_mechanism("oc-gu");
+  const auto spec = kinematics::load_robot("oc-gu");
   const compensation::Compensator comp(spec, std::shared_ptr<const compliance::Model>(
                                                  compliance::load_model("thesis-oc").model.release()));
   std::uint64_t samples = 0;
   for (auto _ : state) {
     motion::TrajectoryStream stream(job);
-    auto writer = compensation::make_joint_writer(format, out.string(), 2000.0, spec.name);
-    samples += compensation::run_job(stream, comp, writer.get(), job, 2000.0).samples;
+    auto writer = job::make_joint_writer(format, out.string(), 2000.0, spec.name);
+    samples += job::run_job(stream, comp, writer.get(), job, 2000.0).samples;
     // A job writes a new file: deleting the last one (which waits for the disk to take its pages)
     // is not part of it.
     state.PauseTiming();
@@ -115,18 +115,18 @@ void BM_RunJob(benchmark::State& state, compensation::OutputFormat format) {
   state.counters["samples"] = static_cast<double>(samples) / static_cast<double>(state.iterations());
   std::filesystem::remove(job);
 }
-BENCHMARK_CAPTURE(BM_RunJob, csv, compensation::OutputFormat::csv)->Arg(2000)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(BM_RunJob, binary, compensation::OutputFormat::binary)->Arg(2000)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_RunJob, csv, job::OutputFormat::csv)->Arg(2000)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_RunJob, binary, job::OutputFormat::binary)->Arg(2000)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Where the job's time goes: the same job without output (plan + compensate only) …
 void BM_RunJobNoOutput(benchmark::State& state) {
   const std::string job = marking_job(static_cast<int>(state.range(0)));
-  const compensation::Compensator comp(kinematics::load_mechanism("oc-gu"), std::shared_ptr<const compliance::Model>(
+  const compensation::Compensator comp(kinematics::load_robot("oc-gu"), std::shared_ptr<const compliance::Model>(
                                                  compliance::load_model("thesis-oc").model.release()));
   std::uint64_t samples = 0;
   for (auto _ : state) {
     motion::TrajectoryStream stream(job);
-    samples += compensation::run_job(stream, comp, nullptr, job, 2000.0).samples;
+    samples += job::run_job(stream, comp, nullptr, job, 2000.0).samples;
   }
   state.counters["samples_per_s"] = benchmark::Counter(static_cast<double>(samples), benchmark::Counter::kIsRate);
   std::filesystem::remove(job);
@@ -140,7 +140,7 @@ void BM_PlanJobOnly(benchmark::State& state) {
   for (auto _ : state) {
     motion::TrajectoryStream stream(job);
     while (const auto s = stream.next()) {
-      benchmark::DoNotOptimize(compensation::to_task_sample(*s));
+      benchmark::DoNotOptimize(job::to_task_sample(*s));
       ++samples;
     }
   }
@@ -150,15 +150,15 @@ void BM_PlanJobOnly(benchmark::State& state) {
 BENCHMARK(BM_PlanJobOnly)->Arg(2000)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // … and only the writer: 448 000 ready commands (the job's length) encoded and written to a file.
-void BM_WriteJoints(benchmark::State& state, compensation::OutputFormat format) {
+void BM_WriteJoints(benchmark::State& state, job::OutputFormat format) {
   const auto samples = job_samples();
-  const compensation::Compensator comp(kinematics::load_mechanism("oc-gu"), std::shared_ptr<const compliance::Model>(
+  const compensation::Compensator comp(kinematics::load_robot("oc-gu"), std::shared_ptr<const compliance::Model>(
                                                  compliance::load_model("thesis-oc").model.release()));
   std::vector<compensation::JointCommand> commands;
   for (std::size_t k = 0; k < 448000; ++k) commands.push_back(comp.step(samples[k % samples.size()]));
   const auto out = std::filesystem::temp_directory_path() / ("stiffpath_bench_write_" + std::to_string(::getpid()));
   for (auto _ : state) {
-    auto writer = compensation::make_joint_writer(format, out.string(), 2000.0, "oc-gu");
+    auto writer = job::make_joint_writer(format, out.string(), 2000.0, "oc-gu");
     for (const auto& c : commands) writer->write(c);
     writer->finish();
     state.PauseTiming();
@@ -169,6 +169,6 @@ void BM_WriteJoints(benchmark::State& state, compensation::OutputFormat format) 
                                                        benchmark::Counter::kIsRate);
   std::filesystem::remove(out);
 }
-BENCHMARK_CAPTURE(BM_WriteJoints, csv, compensation::OutputFormat::csv)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(BM_WriteJoints, binary, compensation::OutputFormat::binary)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_WriteJoints, csv, job::OutputFormat::csv)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_WriteJoints, binary, job::OutputFormat::binary)->Unit(benchmark::kMillisecond)->UseRealTime();
 }  // namespace

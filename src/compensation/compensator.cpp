@@ -13,7 +13,7 @@ const char* describe(Status status) noexcept {
   switch (status) {
     case Status::ok: return "ok";
     case Status::not_finite: return "input sample is not finite";
-    case Status::outside_grid: return "point outside the compliance model's grid (policy 'error')";
+    case Status::outside_grid: return "point outside the compliance model's measured region (policy 'error')";
     case Status::unreachable: return "corrected target is not reachable with the mechanism's singularity margin";
     case Status::joint_position: return "joint position limit exceeded";
     case Status::joint_velocity: return "joint velocity limit exceeded";
@@ -43,13 +43,14 @@ Mat2 inverse(const Mat2& M) noexcept {
 }
 }  // namespace
 
-Compensator::Compensator(const kinematics::MechanismSpec& mechanism, std::shared_ptr<const compliance::Model> model,
+Compensator::Compensator(const kinematics::Robot& robot, std::shared_ptr<const compliance::Model> model,
                          CompensatorOptions options)
-    : spec_(mechanism), robot_(mechanism.five_bar()), model_(std::move(model)), options_(options) {
+    : spec_(robot), five_bar_(robot.five_bar()), model_(std::move(model)), options_(options) {
   if (!model_) throw Error("compensator needs a compliance model");
   if (!std::isfinite(options_.gain) || options_.gain < 0.0) throw Error("compensation gain must be finite and >= 0");
   effective_gain_ = options_.enabled ? options_.gain : 0.0;
   bounds_ = model_->bounds();
+  allowed_ = bounds_.grown(compliance::kOutsideMargin_m);
 }
 
 JointCommand Compensator::step(const TaskSample& s) const noexcept {
@@ -68,7 +69,8 @@ JointCommand Compensator::step(const TaskSample& s) const noexcept {
   const double k = effective_gain_;
   c.force_N = -m * s.acceleration_m_s2;
   c.outside_grid = !bounds_.contains(s.position_m);
-  if (c.outside_grid && model_->outside_policy() == compliance::OutsidePolicy::error && k != 0.0) {
+  if (c.outside_grid && model_->outside_policy() == compliance::OutsidePolicy::error && k != 0.0 &&
+      !allowed_.contains(s.position_m)) {
     c.status = Status::outside_grid;
     return c;
   }
@@ -104,19 +106,19 @@ JointCommand Compensator::step(const TaskSample& s) const noexcept {
     pdd_cmd += k * m * (times(C, s.snap_m_s4) + 2.0 * times(C_dot, s.jerk_m_s3) + times(C_ddot, s.acceleration_m_s2));
   }
 
-  Mat2 J;
-  const kinematics::InverseResult ik = robot_.solve_inverse(c.command_m, J);
+  kinematics::InverseFrame frame;
+  const kinematics::InverseResult ik = five_bar_.solve_inverse(c.command_m, frame);
   if (ik.status != kinematics::Reach::ok) {
     c.status = Status::unreachable;
     return c;
   }
   c.q_rad = ik.q;
-  const Mat2 J_inv = inverse(J);
+  const Mat2 J_inv = inverse(frame.jacobian);
   c.qd_rad_s = times(J_inv, pd_cmd);
-  c.qdd_rad_s2 = times(J_inv, pdd_cmd - times(kinematics::FiveBar::jacobian_dot_from(J, c.qd_rad_s), c.qd_rad_s));
+  c.qdd_rad_s2 = times(J_inv, pdd_cmd - times(five_bar_.jacobian_dot(frame, c.qd_rad_s), c.qd_rad_s));
   if (options_.check_limits) {
     int joint = -1;
-    switch (kinematics::check_joint_limits(spec_, c.q_rad, c.qd_rad_s, c.qdd_rad_s2, joint)) {
+    switch (kinematics::check_joint_limits(spec_.joints, c.q_rad, c.qd_rad_s, c.qdd_rad_s2, joint)) {
       case kinematics::JointCheck::ok: break;
       case kinematics::JointCheck::position: c.status = Status::joint_position; break;
       case kinematics::JointCheck::velocity: c.status = Status::joint_velocity; break;

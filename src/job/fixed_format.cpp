@@ -1,5 +1,5 @@
 // write_fixed / append_fixed: scaled integer rounding, then digits two at a time from a table.
-#include "stiffpath/compensation/fixed_format.hpp"
+#include "stiffpath/job/fixed_format.hpp"
 
 #include <array>
 #include <charconv>
@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <cstring>
 
-namespace stiffpath::compensation {
+namespace stiffpath::job {
 
 namespace {
 constexpr std::array<double, 10> kScale = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
@@ -55,4 +55,4 @@ void append_fixed(std::string& out, double value, int decimals) {
   out.append(text, write_fixed(text, value, decimals));
 }
 
-}  // namespace stiffpath::compensation
+}  // namespace stiffpath::job

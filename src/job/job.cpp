@@ -1,5 +1,5 @@
 // run_job: the streaming offline job (planning here, compensation and writing in a two-thread pipeline), its summary and located errors.
-#include "stiffpath/compensation/job.hpp"
+#include "stiffpath/job/job.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +11,7 @@
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/core/units.hpp"
 
-namespace stiffpath::compensation {
+namespace stiffpath::job {
 
 AccelerationSource parse_acceleration_source(const std::string& text) {
   if (text == "analytic") return AccelerationSource::analytic;
@@ -32,17 +32,18 @@ TaskSample to_task_sample(const motion::TrajectorySample& s) noexcept {
 }
 
 // The refusal of one sample as an error message naming the quantity, its value and its limit.
-void throw_refusal(const JointCommand& c, const Compensator& comp, const std::string& job) {
+void throw_refusal(const JointCommand& c, const compensation::Compensator& comp, const std::string& job) {
+  using compensation::Status;
   const SourceLocation where{job, c.line};
   const std::string when = fmt::format("t = {:.4f} s", c.t_s);
-  const auto& spec = comp.mechanism();
+  const auto& spec = comp.robot();
   const auto joint = [&]() -> const kinematics::JointLimit& { return spec.joints[static_cast<std::size_t>(std::max(c.joint, 0))]; };
   const int j = std::max(c.joint, 0);
   switch (c.status) {
     case Status::unreachable:
       throw Error(where, fmt::format("{}: corrected target (x = {:.4f} mm, y = {:.4f} mm) is not reachable: {}", when,
                                      units::m_to_mm(c.command_m.x()), units::m_to_mm(c.command_m.y()),
-                                     kinematics::describe(comp.mechanism().five_bar().check_reach(c.command_m))));
+                                     comp.five_bar().explain(c.command_m)));
     case Status::joint_position:
       throw Error(where, fmt::format("{}: joint {} position {:.3f} deg outside [{:.1f}, {:.1f}] deg", when, joint().name,
                                      units::rad_to_deg(c.q_rad[j]), units::rad_to_deg(joint().min_rad),
@@ -53,20 +54,25 @@ void throw_refusal(const JointCommand& c, const Compensator& comp, const std::st
     case Status::joint_acceleration:
       throw Error(where, fmt::format("{}: joint {} acceleration {:.1f} rad/s^2 exceeds the limit {:.1f} rad/s^2", when,
                                      joint().name, c.qdd_rad_s2[j], joint().max_acceleration_rad_s2));
-    case Status::outside_grid:
-      throw Error(where, fmt::format("{}: (x = {:.4f} mm, y = {:.4f} mm) is outside the compliance model's grid and its "
-                                     "policy is 'error'",
-                                     when, units::m_to_mm(c.target_m.x()), units::m_to_mm(c.target_m.y())));
+    case Status::outside_grid: {
+      const compliance::GridBounds b = comp.model().bounds();
+      throw Error(where, fmt::format("{}: (x = {:.4f} mm, y = {:.4f} mm) is more than {:g} mm outside the compliance "
+                                     "model's measured region x [{:.3f}, {:.3f}] mm, y [{:.3f}, {:.3f}] mm (use "
+                                     "--outside clamp or extrapolate to go on anyway)",
+                                     when, units::m_to_mm(c.target_m.x()), units::m_to_mm(c.target_m.y()),
+                                     units::m_to_mm(compliance::kOutsideMargin_m), units::m_to_mm(b.x_min),
+                                     units::m_to_mm(b.x_max), units::m_to_mm(b.y_min), units::m_to_mm(b.y_max)));
+    }
     case Status::not_finite: throw Error(where, when + ": the planned sample is not finite");
     case Status::ok: break;
   }
-  throw Error(where, when + ": " + describe(c.status));
+  throw Error(where, when + ": " + compensation::describe(c.status));
 }
 
-JobSummary run_job(motion::SampleSource& source, const Compensator& compensator, JointWriter* writer,
+JobSummary run_job(motion::SampleSource& source, const compensation::Compensator& compensator, JointWriter* writer,
                    const std::string& job_label, double rate_hz, AccelerationSource acceleration,
                    const Progress& progress) {
-  NumericDifferentiator numeric(rate_hz);
+  compensation::NumericDifferentiator numeric(rate_hz);
   bool draining = false;  // numeric: the source is exhausted, the differentiator hands out its last samples
   // The next sample to compensate, in order; false at the end.
   const auto next_task = [&](TaskSample& out) -> bool {
@@ -130,4 +136,4 @@ JobSummary run_job(motion::SampleSource& source, const Compensator& compensator,
   return summary;
 }
 
-}  // namespace stiffpath::compensation
+}  // namespace stiffpath::job

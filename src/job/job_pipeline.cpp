@@ -3,9 +3,9 @@
 
 #include <algorithm>
 
-namespace stiffpath::compensation::detail {
+namespace stiffpath::job::detail {
 
-JobPipeline::JobPipeline(const Compensator& compensator, JointWriter* writer, std::size_t block_samples,
+JobPipeline::JobPipeline(const compensation::Compensator& compensator, JointWriter* writer, std::size_t block_samples,
                          std::size_t blocks)
     : compensator_(compensator), writer_(writer), ring_(std::max<std::size_t>(blocks, 2)) {
   for (auto& block : ring_) {
@@ -88,7 +88,7 @@ void JobPipeline::stop() noexcept {
 bool JobPipeline::check_and_write(JobBlock& block) {
   for (std::size_t k = 0; k < block.count; ++k) {
     const JointCommand& c = block.commands[k];
-    if (c.status != Status::ok) {
+    if (c.status != compensation::Status::ok) {
       refusal_ = c;
       return false;
     }
@@ -138,4 +138,4 @@ void JobPipeline::run() {
   }
 }
 
-}  // namespace stiffpath::compensation::detail
+}  // namespace stiffpath::job::detail

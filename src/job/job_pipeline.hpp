@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "stiffpath/compensation/compensator.hpp"
-#include "stiffpath/compensation/joint_writer.hpp"
+#include "stiffpath/job/joint_writer.hpp"
 
-namespace stiffpath::compensation::detail {
+namespace stiffpath::job::detail {
 
 //! One block of the job: planned samples in, their commands out.
 struct JobBlock {
@@ -46,7 +46,7 @@ class JobPipeline {
   static constexpr std::size_t kBlockSamples = 1024;  //!< ≈ 0.5 s at 2 kHz
   static constexpr std::size_t kBlocks = 8;            //!< ≈ 2 MB in all
 
-  JobPipeline(const Compensator& compensator, JointWriter* writer, std::size_t block_samples = kBlockSamples,
+  JobPipeline(const compensation::Compensator& compensator, JointWriter* writer, std::size_t block_samples = kBlockSamples,
               std::size_t blocks = kBlocks);
   ~JobPipeline();
   JobPipeline(const JobPipeline&) = delete;
@@ -76,7 +76,7 @@ class JobPipeline {
   void run();                          // the second thread
   void stop() noexcept;
 
-  const Compensator& compensator_;
+  const compensation::Compensator& compensator_;
   JointWriter* writer_;
   std::vector<JobBlock> ring_;
   std::uint64_t planned_ = 0;   // blocks handed over so far; block n lives in ring_[n % size]
@@ -91,4 +91,4 @@ class JobPipeline {
   std::thread thread_;
 };
 
-}  // namespace stiffpath::compensation::detail
+}  // namespace stiffpath::job::detail

@@ -1,5 +1,5 @@
 // JointReader: CSV and binary joint trajectories back into records, with located errors.
-#include "stiffpath/compensation/joint_reader.hpp"
+#include "stiffpath/job/joint_reader.hpp"
 
 #include <algorithm>
 #include <array>
@@ -8,10 +8,10 @@
 #include <cstring>
 #include <fmt/format.h>
 
-#include "stiffpath/compensation/joint_writer.hpp"
+#include "stiffpath/job/joint_writer.hpp"
 #include "stiffpath/core/error.hpp"
 
-namespace stiffpath::compensation {
+namespace stiffpath::job {
 
 namespace {
 template <typename T>
@@ -54,12 +54,12 @@ JointReader::JointReader(const std::string& path) : path_(path), in_(path, std::
 
 JointReader::~JointReader() = default;
 
-std::optional<JointRecord> JointReader::next() { return binary_ ? next_binary() : next_csv(); }
+std::optional<compensation::JointCommand> JointReader::next() { return binary_ ? next_binary() : next_csv(); }
 
-std::optional<JointRecord> JointReader::next_csv() {
+std::optional<compensation::JointCommand> JointReader::next_csv() {
   if (!csv_->next()) return std::nullopt;
   const auto n = [&](int i) { return csv_->number(columns_[i]); };
-  JointRecord r;
+  compensation::JointCommand r;
   r.t_s = n(0);
   r.q_rad = {n(1), n(2)};
   r.qd_rad_s = {n(3), n(4)};
@@ -76,7 +76,7 @@ std::optional<JointRecord> JointReader::next_csv() {
   return r;
 }
 
-std::optional<JointRecord> JointReader::next_binary() {
+std::optional<compensation::JointCommand> JointReader::next_binary() {
   std::array<char, kBinaryRecordBytes> record{};
   in_.read(record.data(), record.size());
   const auto got = in_.gcount();
@@ -91,7 +91,7 @@ std::optional<JointRecord> JointReader::next_binary() {
                                                    kBinaryRecordBytes));
   }
   const char* p = record.data();
-  JointRecord r;
+  compensation::JointCommand r;
   double v[13];
   for (double& x : v) x = get<double>(p);
   for (double x : v) {
@@ -110,4 +110,4 @@ std::optional<JointRecord> JointReader::next_binary() {
   return r;
 }
 
-}  // namespace stiffpath::compensation
+}  // namespace stiffpath::job

@@ -1,5 +1,5 @@
 // CSV and binary joint-trajectory writers with large buffers and atomic output.
-#include "stiffpath/compensation/joint_writer.hpp"
+#include "stiffpath/job/joint_writer.hpp"
 
 #include <array>
 #include <bit>
@@ -11,7 +11,7 @@
 #include "stiffpath/core/atomic_file.hpp"
 #include "stiffpath/core/error.hpp"
 
-namespace stiffpath::compensation {
+namespace stiffpath::job {
 
 OutputFormat parse_output_format(const std::string& text) {
   if (text == "csv") return OutputFormat::csv;
@@ -143,4 +143,4 @@ std::unique_ptr<JointWriter> make_joint_writer(OutputFormat format, const std::s
   return std::make_unique<BinaryWriter>(path, rate_hz, mechanism);
 }
 
-}  // namespace stiffpath::compensation
+}  // namespace stiffpath::job

@@ -155,7 +155,11 @@ DataCheckReport check_displacements(const DisplacementTable& table, const DataCh
       rep.linearity.push_back(l);
     }
   }
-  rep.symmetry = check_symmetry(table, options, rep.skipped);
+  if (options.mirror_symmetric) {
+    rep.symmetry = check_symmetry(table, options, rep.skipped);
+  } else {
+    rep.skipped.push_back("symmetry: the robot is not its own mirror image about y = 0");
+  }
   check_reciprocity(series, options, rep);
   compare_mechanisms(table, options, rep);
   return rep;

@@ -9,13 +9,14 @@
 #include <thread>
 
 #include "cli_runner.hpp"
-#include "stiffpath/compensation/job.hpp"
+#include "stiffpath/job/job.hpp"
 #include "stiffpath/compensation/numeric_acceleration.hpp"
 #include "stiffpath/compliance/model_factory.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/motion/trajectory_stream.hpp"
 
-namespace stiffpath::compensation {
+namespace stiffpath::job {
+using namespace stiffpath::compensation;  // NOLINT: the step is what the job runs
 namespace {
 
 // A hatching job of `lines` moves (about 220 samples each at 5 g), optionally with one extra line
@@ -32,7 +33,7 @@ std::string hatch(int lines, int at = -1, const std::string& extra = "") {
 }
 
 Compensator compensator() {
-  return Compensator(kinematics::load_mechanism("oc-gu"),
+  return Compensator(kinematics::load_robot("oc-gu"),
                      std::shared_ptr<const compliance::Model>(compliance::load_model("thesis-oc").model.release()));
 }
 
@@ -186,4 +187,4 @@ TEST(RunJob, ProgressComesFromTheCallingThreadAndTheWriterFromOneOther) {
 }
 
 }  // namespace
-}  // namespace stiffpath::compensation
+}  // namespace stiffpath::job

@@ -6,11 +6,12 @@
 #include <random>
 
 #include "cli_runner.hpp"
-#include "stiffpath/compensation/joint_reader.hpp"
-#include "stiffpath/compensation/joint_writer.hpp"
+#include "stiffpath/job/joint_reader.hpp"
+#include "stiffpath/job/joint_writer.hpp"
 #include "stiffpath/core/error.hpp"
 
-namespace stiffpath::compensation {
+namespace stiffpath::job {
+using namespace stiffpath::compensation;  // NOLINT: the step is what the job runs
 namespace {
 
 std::vector<JointCommand> commands(int n) {
@@ -141,4 +142,4 @@ TEST(JointFiles, CorruptFilesAreReportedWithTheirPlace) {
 }
 
 }  // namespace
-}  // namespace stiffpath::compensation
+}  // namespace stiffpath::job

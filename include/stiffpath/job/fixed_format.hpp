@@ -3,7 +3,7 @@
 
 #include <string>
 
-namespace stiffpath::compensation {
+namespace stiffpath::job {
 
 //! Longest text write_fixed() produces: sign, 19 digits, the point (|value|·10^decimals < 9.2e18).
 inline constexpr int kMaxFixedChars = 21;
@@ -17,4 +17,4 @@ char* write_fixed(char* out, double value, int decimals) noexcept;
 //! joint file.
 void append_fixed(std::string& out, double value, int decimals);
 
-}  // namespace stiffpath::compensation
+}  // namespace stiffpath::job

@@ -6,10 +6,13 @@
 #include <string>
 
 #include "stiffpath/compensation/compensator.hpp"
-#include "stiffpath/compensation/joint_writer.hpp"
+#include "stiffpath/job/joint_writer.hpp"
 #include "stiffpath/motion/sampler.hpp"
 
-namespace stiffpath::compensation {
+namespace stiffpath::job {
+
+using compensation::JointCommand;
+using compensation::TaskSample;
 
 //! Where the acceleration for F = −m·a comes from.
 enum class AccelerationSource {
@@ -40,15 +43,15 @@ using Progress = std::function<void(std::uint64_t samples, int line)>;
 //! calling thread. On the first refused sample it throws stiffpath::Error "<job>:<line>: t = … s:
 //! <quantity> …" naming the G-code line, the time and the value against its limit; the writer is
 //! then not finished, so no output file appears. Memory does not depend on the job's length.
-JobSummary run_job(motion::SampleSource& source, const Compensator& compensator, JointWriter* writer,
+JobSummary run_job(motion::SampleSource& source, const compensation::Compensator& compensator, JointWriter* writer,
                    const std::string& job_label, double rate_hz,
                    AccelerationSource acceleration = AccelerationSource::analytic, const Progress& progress = {});
 
 //! Throws the stiffpath::Error for a refused command `c` (status not ok): "<job>:<line>: t = … s:
 //! <quantity> <value> against <limit>", the message run_job gives, for other loops over step().
-[[noreturn]] void throw_refusal(const JointCommand& c, const Compensator& compensator, const std::string& job_label);
+[[noreturn]] void throw_refusal(const JointCommand& c, const compensation::Compensator& compensator, const std::string& job_label);
 
 //! The compensation input for one planned sample (snap 0: jerk-limited profiles have none a.e.).
 TaskSample to_task_sample(const motion::TrajectorySample& sample) noexcept;
 
-}  // namespace stiffpath::compensation
+}  // namespace stiffpath::job

@@ -10,23 +10,14 @@
 #include "stiffpath/compensation/samples.hpp"
 #include "stiffpath/core/csv.hpp"
 
-namespace stiffpath::compensation {
+namespace stiffpath::job {
 
-//! One sample of a joint file. CSV files carry no α (qdd stays zero there).
-struct JointRecord {
-  double t_s = 0.0;
-  Vec2 q_rad = Vec2::Zero();
-  Vec2 qd_rad_s = Vec2::Zero();
-  Vec2 qdd_rad_s2 = Vec2::Zero();
-  Vec2 target_m = Vec2::Zero();
-  Vec2 command_m = Vec2::Zero();
-  Vec2 force_N = Vec2::Zero();
-  bool laser_on = false;
-  int line = 0;
-};
+using compensation::Vec2;
 
-//! Reads a joint file sample by sample; the format is recognised by the binary magic. Every bad
-//! value is an error naming the file and the line (CSV) or the record number (binary).
+//! Reads a joint file sample by sample, as the JointCommands that were written (status ok; the
+//! predicted deflection is not stored, and CSV files carry no α, so qdd stays zero there); the
+//! format is recognised by the binary magic. Every bad value is an error naming the file and the
+//! line (CSV) or the record number (binary).
 class JointReader {
  public:
   explicit JointReader(const std::string& path);
@@ -35,15 +26,15 @@ class JointReader {
   JointReader& operator=(const JointReader&) = delete;
 
   //! The next record, or nullopt at the end.
-  std::optional<JointRecord> next();
+  std::optional<compensation::JointCommand> next();
   [[nodiscard]] bool binary() const noexcept { return binary_; }
   //! Sample rate from the binary header; from the first two CSV samples otherwise (0 until known).
   [[nodiscard]] double rate_hz() const noexcept { return rate_hz_; }
   [[nodiscard]] const std::string& mechanism() const noexcept { return mechanism_; }
 
  private:
-  std::optional<JointRecord> next_csv();
-  std::optional<JointRecord> next_binary();
+  std::optional<compensation::JointCommand> next_csv();
+  std::optional<compensation::JointCommand> next_binary();
 
   std::string path_;
   bool binary_ = false;
@@ -55,4 +46,4 @@ class JointReader {
   std::string mechanism_;
 };
 
-}  // namespace stiffpath::compensation
+}  // namespace stiffpath::job

@@ -5,10 +5,14 @@
 #include <memory>
 #include <string>
 
-#include "stiffpath/compensation/fixed_format.hpp"
+#include "stiffpath/job/fixed_format.hpp"
 #include "stiffpath/compensation/samples.hpp"
 
-namespace stiffpath::compensation {
+namespace stiffpath::job {
+
+using compensation::JointCommand;
+using compensation::TaskSample;
+using compensation::Vec2;
 
 enum class OutputFormat { csv, binary };
 OutputFormat parse_output_format(const std::string& text);  //!< "csv" | "bin"; throws stiffpath::Error
@@ -42,4 +46,4 @@ class JointWriter {
 std::unique_ptr<JointWriter> make_joint_writer(OutputFormat format, const std::string& path, double rate_hz,
                                                const std::string& mechanism);
 
-}  // namespace stiffpath::compensation
+}  // namespace stiffpath::job
