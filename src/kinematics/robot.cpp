@@ -2,6 +2,7 @@
 #include "stiffpath/kinematics/robot.hpp"
 
 #include <algorithm>
+#include <numbers>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -49,10 +50,13 @@ std::string Robot::refusal(const Vec2& p) const {
   if (r.status != Reach::ok) return robot.explain(p);
   for (std::size_t i = 0; i < 2; ++i) {
     const JointLimit& lim = joints[i];
-    if (!(r.q[static_cast<Eigen::Index>(i)] >= lim.min_rad && r.q[static_cast<Eigen::Index>(i)] <= lim.max_rad)) {
+    double q = r.q[static_cast<Eigen::Index>(i)];
+    if (!(q >= lim.min_rad && q <= lim.max_rad)) {
+      // Of the angle's turns, name the one nearest to the range (−55°, not 305°, below a −45° limit).
+      const double turn = 2.0 * std::numbers::pi;
+      if (q > lim.max_rad && lim.min_rad - (q - turn) < q - lim.max_rad) q -= turn;
       return fmt::format("joint {} would be at {:.3f} deg, outside its range [{:.1f}, {:.1f}] deg", lim.name,
-                         units::rad_to_deg(r.q[static_cast<Eigen::Index>(i)]), units::rad_to_deg(lim.min_rad),
-                         units::rad_to_deg(lim.max_rad));
+                         units::rad_to_deg(q), units::rad_to_deg(lim.min_rad), units::rad_to_deg(lim.max_rad));
     }
   }
   return {};
