@@ -35,8 +35,8 @@ done
 "$bin" experiment -o exp --no-plots > /dev/null
 cp exp/results.csv "$out/experiment_results.csv"
 # Cross-validation, kinematics on the grid, predictions.
-"$bin" cv thesis --mechanism oc --json > "$out/cv_oc.json"
-"$bin" cv thesis --mechanism sc --json > "$out/cv_sc.json"
+"$bin" cv thesis --mechanism oc-gu --json > "$out/cv_oc.json"
+"$bin" cv thesis --mechanism sc-gu --json > "$out/cv_sc.json"
 "$bin" kin grid --json > "$out/kin_grid.json"
 for m in thesis-oc thesis-sc-physical; do
   "$bin" predict --model $m --x-mm 240.5 --y-mm -20.25 --fx-n 180 --fy-n -95 --json > "$out/predict_$m.json"
