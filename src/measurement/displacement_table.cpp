@@ -90,14 +90,14 @@ DisplacementTable read_table(core::CsvReader& csv, const std::string& source) {
   const auto required = [&](std::string_view name) {
     return require_column(csv, name, header_line, kRequiredDisplacementColumns);
   };
+  require_unit(csv, header_line, "x", "mm");  // before the required columns: x_m is named as a unit error
+  require_unit(csv, header_line, "y", "mm");
   const auto c_dir = required("direction"), c_point = required("point");
   const auto c_x = required("x_mm"), c_y = required("y_mm"), c_fn = required("F_N");
   const auto c_dx = required("dx_mm"), c_dy = required("dy_mm");
   const auto c_mech = csv.find_column("mechanism"), c_step = csv.find_column("step");
   const auto c_kgf = csv.find_column("force_kgf"), c_nom = csv.find_column("F_nominal_N");
   const auto c_dz = csv.find_column("dz_mm"), c_rx = csv.find_column("rx_deg"), c_ry = csv.find_column("ry_deg");
-  require_unit(csv, header_line, "x", "mm");
-  require_unit(csv, header_line, "y", "mm");
 
   const auto c_readings = csv.find_column("readings");
   DisplacementTable table{source, {}, {}};
