@@ -163,6 +163,28 @@ TEST(CliOwnRobot, SimulateAndExperimentUseTheRobotsTwin) {
   for (int motion = 0; motion < 3; ++motion) EXPECT_LT(length[1][motion], 0.5 * length[0][motion]) << motion;
 }
 
+TEST(CliOwnRobot, DataCheckAndTheExperimentOnAUsersOwnPath) {
+  const Workspace w;
+  // The robot is not its own mirror image: no symmetry is expected of its data; the exact field is linear.
+  const CliResult check = w.run("data check --robot robot.json --json");
+  ASSERT_EQ(check.exit_code, 0) << check.err;
+  EXPECT_EQ(check.json()["flagged"], 0);
+  EXPECT_TRUE(check.json()["symmetry"].empty());
+  EXPECT_EQ(check.json()["linearity"].size(), 12U * 2 * 2);  // dx, dy of 12 points × 2 directions
+  // A closed square of the user's as the only path of the experiment.
+  write_text(w.dir / "square.gcode",
+             "G21 G90\nG61\nG0 X-30 Y180\nM3 S100\nG1 X30 Y180 F120000\nG1 X30 Y240\nG1 X-30 Y240\nG1 X-30 Y180\nM5\n");
+  const CliResult e = w.run("experiment --robot robot.json --path square.gcode:4 --accelerations-g 3 -o out --no-plots");
+  ASSERT_EQ(e.exit_code, 0) << e.err;
+  const auto rows = read_csv(w.dir / "out" / "results.csv");
+  ASSERT_EQ(rows.size(), 3U);
+  for (std::size_t k = 1; k < 3; ++k) {
+    EXPECT_EQ(rows[k][4], "square");
+    EXPECT_NEAR(std::stod(rows[k][8]), 240.0, 1e-6);  // the commanded length of four 60 mm sides
+  }
+  EXPECT_LT(std::stod(rows[2][11]), std::stod(rows[1][11]));  // compensation lowers the largest deviation
+}
+
 TEST(CliOwnRobot, AFieldBeyondThePhysicalModelIsApproximatedWithinFivePercent) {
   // A compliant base frame adds a constant C_b to every point: C = U⁻ᵀDU⁻¹ + C_b is not of the model's
   // form with a linear D (Uᵀ C_b U varies with the geometry), so the fit can only approximate it.
