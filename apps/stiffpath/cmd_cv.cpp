@@ -91,9 +91,13 @@ void run(const CvOptions& o) {
                m.max_um, m.predicted, scores[k].second);
   }
   for (const auto& s : report.skipped) fmt::print("{:<12} could not run: {}\n", s.method, s.reason);
+  const auto& named = robot.compliance;
+  const std::string note = !named.model.empty()    ? fmt::format("; robot {} names its model file {}", robot.name, named.model.label())
+                           : !named.method.empty() ? fmt::format("; robot {} names the method {} in its file", robot.name, named.method)
+                                                   : fmt::format("; robot {} uses it", robot.name);
   fmt::print("interior = points strictly inside the points' bounding rectangle; common points = those every method "
-             "predicts\nfavoured: {} (the default model for this robot's data)\n",
-             favoured);
+             "predicts\nfavoured: {} (what fit chooses without --method{})\n",
+             favoured, note);
 }
 }  // namespace
 
