@@ -56,10 +56,17 @@ job::Progress progress_bar(const std::string& job) {
 
 void run(const RunArgs& a) {
   const auto robot = load_robot_flag(a.robot);
-  auto loaded = compliance::load_robot_model(robot, a.request);
-  if (!a.outside.empty()) loaded.model->set_outside_policy(compliance::parse_outside_policy(a.outside));
-  const std::string model_name = loaded.label;
-  const std::shared_ptr<const compliance::Model> model(loaded.model.release());
+  const bool compensating = !a.no_compensation && a.gain != 0.0;
+  // A robot with no compliance data yet can still run without compensation (reach and limits only).
+  const bool has_data = !robot.compliance.table.empty() || !robot.compliance.model.empty() || !a.request.model.empty();
+  std::shared_ptr<const compliance::Model> model;
+  std::string model_name = "none";
+  if (compensating || has_data) {
+    auto loaded = compliance::load_robot_model(robot, a.request);
+    if (!a.outside.empty()) loaded.model->set_outside_policy(compliance::parse_outside_policy(a.outside));
+    model_name = loaded.label;
+    model.reset(loaded.model.release());
+  }
   const compensation::Compensator compensator(robot, model, {a.gain, !a.no_compensation, true});
   const motion::PlanOptions options = plan_options(a.motion);
   const auto acceleration = job::parse_acceleration_source(a.accel_source);
@@ -73,7 +80,6 @@ void run(const RunArgs& a) {
   const job::JobSummary s = job::run_job(stream, compensator, writer.get(), a.job, options.rate_hz, acceleration, progress);
   if (progress) std::fprintf(stderr, "\n");
 
-  const bool compensating = !a.no_compensation && a.gain != 0.0;
   if (a.json) {
     print_json({{"job", a.job},
                 {"robot", robot.name},
@@ -102,7 +108,7 @@ void run(const RunArgs& a) {
              s.peak_joint_acceleration_rad_s2);
   if (s.samples_outside_grid > 0) {
     fmt::print("  {} samples outside the compliance model's measured region ({})\n", s.samples_outside_grid,
-               compliance::to_string(model->outside_policy()));
+               model ? compliance::to_string(model->outside_policy()) : "no model");
   }
   if (!a.output.empty()) fmt::print("  wrote {}\n", a.output);
 }

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <span>
 
 #include "stiffpath/core/error.hpp"
@@ -46,10 +47,12 @@ Mat2 inverse(const Mat2& M) noexcept {
 Compensator::Compensator(const kinematics::Robot& robot, std::shared_ptr<const compliance::Model> model,
                          CompensatorOptions options)
     : spec_(robot), five_bar_(robot.five_bar()), model_(std::move(model)), options_(options) {
-  if (!model_) throw Error("compensator needs a compliance model");
   if (!std::isfinite(options_.gain) || options_.gain < 0.0) throw Error("compensation gain must be finite and >= 0");
   effective_gain_ = options_.enabled ? options_.gain : 0.0;
-  bounds_ = model_->bounds();
+  if (!model_ && effective_gain_ != 0.0) throw Error("compensator needs a compliance model");
+  // Without a model (no compensation asked for) nothing is outside and nothing is predicted.
+  const double inf = std::numeric_limits<double>::infinity();
+  bounds_ = model_ ? model_->bounds() : compliance::GridBounds{-inf, inf, -inf, inf};
   allowed_ = bounds_.grown(compliance::kOutsideMargin_m);
 }
 
@@ -69,7 +72,7 @@ JointCommand Compensator::step(const TaskSample& s) const noexcept {
   const double k = effective_gain_;
   c.force_N = -m * s.acceleration_m_s2;
   c.outside_grid = !bounds_.contains(s.position_m);
-  if (c.outside_grid && model_->outside_policy() == compliance::OutsidePolicy::error && k != 0.0 &&
+  if (c.outside_grid && k != 0.0 && model_->outside_policy() == compliance::OutsidePolicy::error &&
       !allowed_.contains(s.position_m)) {
     c.status = Status::outside_grid;
     return c;
@@ -89,10 +92,14 @@ JointCommand Compensator::step(const TaskSample& s) const noexcept {
     points[1] = s.position_m + h * s.velocity_m_s + drift;
     points[2] = s.position_m - h * s.velocity_m_s + drift;
   }
-  model_->compliance_batch(std::span<const Vec2>(points.data(), k != 0.0 ? 3 : 1), Cs);
+  if (model_) {
+    model_->compliance_batch(std::span<const Vec2>(points.data(), k != 0.0 ? 3 : 1), Cs);
+  } else {
+    Cs[0].setZero();
+  }
   const Mat2& C = Cs[0];
   c.deflection_m = times(C, c.force_N);
-  if (model_->zero_force() == compliance::ZeroForce::thesis_raw) c.deflection_m += model_->offset(s.position_m);
+  if (model_ && model_->zero_force() == compliance::ZeroForce::thesis_raw) c.deflection_m += model_->offset(s.position_m);
   c.command_m = s.position_m - k * c.deflection_m;
 
   Vec2 pd_cmd = s.velocity_m_s, pdd_cmd = s.acceleration_m_s2;

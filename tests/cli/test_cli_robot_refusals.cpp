@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include "cli_runner.hpp"
 #include "own_robot.hpp"
@@ -179,6 +180,32 @@ TEST(CliRobotRefusals, TwinAndMeasurementCommandsNeedWhatTheRobotLacks) {
   EXPECT_EQ(exp.exit_code, 2);
   EXPECT_NE(exp.err.find("has no compliance data for the digital twin"), std::string::npos) << exp.err;
   w.expect_only({"robot.json", "table.csv", "job.gcode", "j.bin", "bare.json"});
+  // Without compensation it needs none: reach and joint limits only, commands on the plan.
+  const CliResult plain = w.run("run job.gcode --robot bare.json --no-compensation -o plain.csv --json");
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_EQ(plain.json()["model"], "none");
+  EXPECT_EQ(plain.json()["peak_correction_um"], 0.0);
+}
+
+TEST(CliRobotRefusals, AModelFileOfFormatOneNeedsForcing) {
+  const Workspace w;
+  ASSERT_EQ(w.run("fit --robot robot.json --method bilinear -o m.json").exit_code, 0);
+  // The same model as version 1 wrote it: no robot block, so no geometry to check.
+  std::ifstream in(w.dir / "m.json");
+  auto doc = nlohmann::json::parse(in);
+  doc["version"] = 1;
+  doc.erase("robot");
+  write_text(w.dir / "old.json", doc.dump(2));
+  write_text(w.dir / "job.gcode", "G21 G90\nG0 X10 Y175\nM3 S100\nG1 Y245 F60000\nM5\n");
+  const CliResult r = w.run("run job.gcode --robot robot.json --model old.json -o out.csv");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "error: model old.json does not record the robot geometry it was fitted for (a file of format "
+                   "version 1): refit it for robot 'asym' or pass --force-model\n");
+  w.expect_only({"robot.json", "table.csv", "m.json", "old.json", "job.gcode"});
+  // Forced, it is used as it stands.
+  const CliResult forced = w.run("run job.gcode --robot robot.json --model old.json --force-model -o out.csv");
+  EXPECT_EQ(forced.exit_code, 0) << forced.err;
+  EXPECT_TRUE(std::filesystem::exists(w.dir / "out.csv"));
 }
 
 }  // namespace

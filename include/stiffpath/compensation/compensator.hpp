@@ -31,7 +31,9 @@ struct CompensatorOptions {
 //! allocate, lock or throw, and takes constant time (one call for the model at three points, one IK).
 class Compensator {
  public:
-  //! Keeps the model alive; throws stiffpath::Error for a non-finite or negative gain or a null model.
+  //! Keeps the model alive; throws stiffpath::Error for a non-finite or negative gain, or a null model
+  //! when compensating (without compensation a robot with no compliance data yet may pass none: the
+  //! predicted deflection is then zero and nothing is outside).
   Compensator(const kinematics::Robot& robot, std::shared_ptr<const compliance::Model> model,
               CompensatorOptions options = {});
 
@@ -40,7 +42,9 @@ class Compensator {
   [[nodiscard]] const CompensatorOptions& options() const noexcept { return options_; }
   [[nodiscard]] const kinematics::Robot& robot() const noexcept { return spec_; }
   [[nodiscard]] const kinematics::FiveBar& five_bar() const noexcept { return five_bar_; }
+  //! The model; only when one was given (see the constructor).
   [[nodiscard]] const compliance::Model& model() const noexcept { return *model_; }
+  [[nodiscard]] bool has_model() const noexcept { return model_ != nullptr; }
 
  private:
   kinematics::Robot spec_;
