@@ -38,7 +38,7 @@ using Progress = std::function<void(std::uint64_t samples, int line)>;
 
 //! Runs every sample of `source` through `compensator` and `writer` (may be null: summary only).
 //! The calling thread plans; a second thread checks and writes the commands in order, and either
-//! thread compensates (src/compensation/job_pipeline.hpp), so the job uses two cores. `writer` is
+//! thread compensates (src/job/job_pipeline.hpp), so the job uses two cores. `writer` is
 //! called from that second thread only, one command at a time, in order; `progress` from the
 //! calling thread. On the first refused sample it throws stiffpath::Error "<job>:<line>: t = … s:
 //! <quantity> …" naming the G-code line, the time and the value against its limit; the writer is
