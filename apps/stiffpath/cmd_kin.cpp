@@ -1,5 +1,6 @@
 // `stiffpath kin fk|ik|grid`: the robot's kinematics at the command line (eqs. 2.1–2.2 for the thesis robot).
 #include <algorithm>
+#include <cmath>
 #include <fmt/format.h>
 #include <memory>
 #include <vector>
@@ -58,7 +59,17 @@ void run_fk(const KinOptions& o) {
     }
   }
   const auto five_bar = robot.five_bar();
-  const auto pose = pose_json(five_bar, q, five_bar.forward_checked(q));
+  const Vec2 p = five_bar.forward_checked(q);
+  auto pose = pose_json(five_bar, q, p);
+  // Angles whose elbows sit on the other side than the robot's working mode give a point the robot
+  // reaches with other angles: say so rather than call the pose reachable.
+  const auto back = five_bar.solve_inverse(p);
+  if (back.status == kinematics::Reach::ok &&
+      (std::abs(std::remainder(back.q.x() - q.x(), 2 * M_PI)) > 1e-9 ||
+       std::abs(std::remainder(back.q.y() - q.y(), 2 * M_PI)) > 1e-9)) {
+    pose["reach"] = fmt::format("these angles put the elbows out of the robot's working mode (elbows [{:+d}, {:+d}])",
+                                robot.geometry.elbows[0], robot.geometry.elbows[1]);
+  }
   o.json ? print_json(pose) : print_pose(pose);
 }
 

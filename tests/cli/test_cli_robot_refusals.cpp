@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <cmath>
 #include <fstream>
 
 #include "cli_runner.hpp"
@@ -90,6 +91,23 @@ TEST(CliRobotRefusals, KinAndPlanHonourTheJointLimitsAndTheWorkspace) {
   EXPECT_EQ(stretched.exit_code, 2);
   EXPECT_NE(stretched.err.find("too close to the stretched-out singularity: the left arm would reach"), std::string::npos)
       << stretched.err;
+
+  // Angles that put the left elbow on the other side of A1C reach (0, 210) mm in another working mode:
+  // fk says so instead of calling the pose reachable (joint ranges widened so that it is not refused).
+  std::string wide = kRobot.file("table.csv");
+  for (const char* limit : {"\"min_deg\": 45, \"max_deg\": 225", "\"min_deg\": -45, \"max_deg\": 135"}) {
+    wide.replace(wide.find(limit), std::string(limit).size(), "\"min_deg\": -180, \"max_deg\": 180");
+  }
+  write_text(w.dir / "wide.json", wide);
+  const V2 home = kRobot.joints({0.0, 0.210});
+  const double flipped = 2 * std::atan2(0.210, 0.040) - home.x();
+  const CliResult other = w.run(fmt::format("kin fk --robot wide.json --theta1-deg {:.9f} --theta2-deg {:.9f} --json",
+                                            flipped * 180 / M_PI, home.y() * 180 / M_PI));
+  ASSERT_EQ(other.exit_code, 0) << other.err;
+  EXPECT_NEAR(other.json()["x_mm"].get<double>(), 0.0, 1e-5);
+  EXPECT_NEAR(other.json()["y_mm"].get<double>(), 210.0, 1e-5);
+  EXPECT_EQ(other.json()["reach"], "these angles put the elbows out of the robot's working mode (elbows [+1, -1])");
+  std::filesystem::remove(w.dir / "wide.json");
 
   write_text(w.dir / "far.gcode", "G21 G90\nG0 X0 Y200\nG1 Y320 F60000\n");
   const CliResult plan = w.run("plan far.gcode --robot robot.json -o traj.csv");
