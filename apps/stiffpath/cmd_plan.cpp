@@ -7,6 +7,7 @@
 
 #include "commands.hpp"
 #include "motion_flags.hpp"
+#include "robot_flags.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/core/units.hpp"
 #include "stiffpath/motion/trajectory_csv.hpp"
@@ -24,6 +25,7 @@ constexpr double csv_row_bytes = 120.0;
 struct PlanArgs {
   std::string job;
   std::string output;
+  std::string robot;
   bool json = false;
   std::uint64_t max_samples = default_max_samples;
   MotionFlags motion;
@@ -48,20 +50,49 @@ void check_size(const PlanArgs& a, const motion::PlanOptions& options) {
                                                  size.samples, size.duration_s, options.rate_hz, csv, a.max_samples));
 }
 
+// Passes the planned samples on and refuses the first one the robot cannot reach (singularity margins,
+// assembly mode, joint position limits), naming its G-code line, time and point.
+class WorkspaceCheck final : public motion::SampleSource {
+ public:
+  WorkspaceCheck(motion::SampleSource& inner, const kinematics::Robot& robot, std::string job)
+      : inner_(inner), robot_(robot), five_bar_(robot.five_bar()), job_(std::move(job)) {}
+  std::optional<motion::TrajectorySample> next() override {
+    auto s = inner_.next();
+    if (!s) return s;
+    const auto r = five_bar_.solve_inverse(s->position_m);
+    if (r.status != kinematics::Reach::ok || !robot_.within_limits(r.q)) {
+      throw Error(SourceLocation{job_, s->line},
+                  fmt::format("t = {:.4f} s: point (x = {:.4f} mm, y = {:.4f} mm) is outside robot {}'s workspace: {}",
+                              s->t_s, units::m_to_mm(s->position_m.x()), units::m_to_mm(s->position_m.y()), robot_.name,
+                              robot_.refusal(s->position_m)));
+    }
+    return s;
+  }
+
+ private:
+  motion::SampleSource& inner_;
+  const kinematics::Robot& robot_;
+  kinematics::FiveBar five_bar_;
+  std::string job_;
+};
+
 void run_plan(const PlanArgs& a) {
-  motion::PlanOptions options = plan_options(a.motion);
+  const auto robot = load_robot_flag(a.robot);
+  motion::PlanOptions options = plan_options(a.motion, robot);
   if (a.json) options.gcode.on_warnings = nullptr;  // they go into the JSON document
   check_size(a, options);
-  motion::TrajectoryStream stream(a.job, options);
+  motion::TrajectoryStream planned(a.job, options);
+  WorkspaceCheck stream(planned, robot, a.job);
   const motion::TrajectorySummary summary = a.output.empty()
                                                 ? motion::summarize(stream, options.rate_hz)
                                                 : motion::write_trajectory_csv(stream, options.rate_hz, a.output);
-  const auto& planner = stream.planner_statistics();
+  const auto& planner = planned.planner_statistics();
   if (a.json) {
     print_json({{"job", a.job},
+                {"robot", robot.name},
                 {"duration_s", tidy(summary.duration_s)},
                 {"samples", summary.samples},
-                {"segments", stream.segments()},
+                {"segments", planned.segments()},
                 {"rate_hz", tidy(options.rate_hz)},
                 {"peak_velocity_m_s", tidy(summary.peak_velocity_m_s)},
                 {"peak_acceleration_m_s2", tidy(summary.peak_acceleration_m_s2)},
@@ -73,12 +104,13 @@ void run_plan(const PlanArgs& a) {
                 {"max_acceleration_m_s2", tidy(options.limits.max_acceleration_m_s2)},
                 {"max_jerk_m_s3", tidy(options.limits.max_jerk_m_s3)},
                 {"lookahead_peak_segments", planner.peak_window},
-                {"warnings", warnings_json(stream.warnings())},
+                {"warnings", warnings_json(planned.warnings())},
                 {"output", a.output.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.output)}});
     return;
   }
-  fmt::print("{}: {} segment{}, {} samples at {:g} Hz, duration {:.6f} s\n", a.job, stream.segments(),
-             stream.segments() == 1 ? "" : "s", summary.samples, options.rate_hz, summary.duration_s);
+  fmt::print("{}: {} segment{}, {} samples at {:g} Hz, duration {:.6f} s, inside robot {}'s workspace\n", a.job,
+             planned.segments(), planned.segments() == 1 ? "" : "s", summary.samples, options.rate_hz, summary.duration_s,
+             robot.name);
   fmt::print("limits: v {:.1f} mm/s, a {:.3f} m/s^2 ({:.2f} g), j {:.1f} m/s^3\n", units::m_to_mm(options.limits.max_velocity_m_s),
              options.limits.max_acceleration_m_s2, options.limits.max_acceleration_m_s2 / units::standard_gravity_m_s2,
              options.limits.max_jerk_m_s3);
@@ -98,6 +130,7 @@ void add_plan_command(CLI::App& app) {
   auto a = std::make_shared<PlanArgs>();
   cmd->add_option("job", a->job, "G-code program (mm, robot frame unless --work-offset-mm)")->required();
   add_motion_flags(cmd, a->motion);
+  add_robot_flag(cmd, a->robot)->description("Robot whose workspace every sample must lie in (default: oc-gu)");
   cmd->add_option("-o,--output", a->output, "Write the samples to this CSV file");
   cmd->add_option("--max-samples", a->max_samples, "Refuse a plan with more samples than this (20 M: 2 h 46 min at 2 kHz)")
       ->capture_default_str();

@@ -7,7 +7,6 @@
 
 #include "commands.hpp"
 #include "stiffpath/core/error.hpp"
-#include "stiffpath/kinematics/mechanism_spec.hpp"
 #include "stiffpath/motion/gcode_diagnostics.hpp"
 
 namespace stiffpath::cli {
@@ -19,12 +18,6 @@ double tidy(double value) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.12g", value);
   return std::strtod(buffer, nullptr);
-}
-
-std::string resolve_build(const std::string& mechanism) {
-  if (mechanism == "oc" || mechanism == "OC") return "OC";
-  if (mechanism == "sc" || mechanism == "SC") return "SC";
-  return kinematics::load_mechanism(mechanism).build;
 }
 
 namespace {

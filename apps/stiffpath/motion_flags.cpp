@@ -72,8 +72,9 @@ void add_motion_flags(CLI::App* cmd, MotionFlags& a) {
       ->capture_default_str();
 }
 
-motion::PlanOptions plan_options(const MotionFlags& a) {
+motion::PlanOptions plan_options(const MotionFlags& a, const kinematics::Robot& robot) {
   motion::PlanOptions o;
+  o.gcode.home_position_m = robot.home_m;  // G28 goes to the robot file's home_mm
   try {
     o.limits.max_acceleration_m_s2 = units::parse_acceleration_m_s2(a.accel);
   } catch (const Error& e) {

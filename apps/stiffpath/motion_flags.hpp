@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "stiffpath/kinematics/robot.hpp"
 #include "stiffpath/motion/trajectory_stream.hpp"
 
 namespace stiffpath::cli {
@@ -35,7 +36,7 @@ void add_motion_flags(CLI::App* cmd, MotionFlags& flags);
 //! The planner's options from the flags. Every number is checked against its documented range
 //! (docs/motion.md); a bad one throws stiffpath::Error "--flag: reason, got value". The G-code
 //! warnings are printed to stderr, one line per kind, when the program has been read.
-motion::PlanOptions plan_options(const MotionFlags& flags);
+motion::PlanOptions plan_options(const MotionFlags& flags, const kinematics::Robot& robot);
 //! Prints the summarised warnings as "warning: file:line: message" lines on stderr.
 void print_gcode_warnings(const std::string& file, const std::vector<motion::GcodeWarning>& warnings);
 

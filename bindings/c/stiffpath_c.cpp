@@ -13,16 +13,16 @@
 #include "stiffpath/compensation/compensator.hpp"
 #include "stiffpath/compliance/model_factory.hpp"
 #include "stiffpath/core/error.hpp"
-#include "stiffpath/kinematics/mechanism_spec.hpp"
+#include "stiffpath/kinematics/robot.hpp"
 
 namespace sp = stiffpath;
 
 // The robot: its description and the mechanism built from it. When the robot description changes
 // type, this struct, load_robot() and robot_info() are what follow it.
 struct stiffpath_robot {
-  sp::kinematics::MechanismSpec spec;
+  sp::kinematics::Robot spec;
   sp::kinematics::FiveBar mechanism;
-  explicit stiffpath_robot(sp::kinematics::MechanismSpec s) : spec(std::move(s)), mechanism(spec.five_bar()) {}
+  explicit stiffpath_robot(sp::kinematics::Robot s) : spec(std::move(s)), mechanism(spec.five_bar()) {}
 };
 
 struct stiffpath_compensator {
@@ -67,9 +67,9 @@ T* create_or_report(Make&& make, char* error, size_t error_size) noexcept {
   return nullptr;
 }
 
-sp::kinematics::MechanismSpec load_robot(const char* robot) {
+sp::kinematics::Robot load_robot(const char* robot) {
   if (robot == nullptr || *robot == '\0') throw sp::Error("no robot given: a preset name or a robot file is needed");
-  return sp::kinematics::load_mechanism(robot);
+  return sp::kinematics::load_robot(robot);
 }
 
 sp::kinematics::Vec2 vec(const double v[2]) noexcept { return {v[0], v[1]}; }
@@ -142,10 +142,9 @@ stiffpath_compensator* stiffpath_compensator_create(const char* robot, const cha
       [&] {
         const stiffpath_options o = options != nullptr ? *options : stiffpath_default_options();
         stiffpath_robot r(load_robot(robot));
-        const std::string model_name = model != nullptr && *model != '\0' ? std::string(model)
-                                       : r.spec.build == "SC"            ? std::string("thesis-sc")
-                                                                         : std::string("thesis-oc");
-        auto loaded = sp::compliance::load_model(model_name);
+        sp::compliance::ModelRequest request;
+        if (model != nullptr) request.model = model;
+        auto loaded = sp::compliance::load_robot_model(r.spec, request);
         switch (o.outside_policy) {
           case STIFFPATH_OUTSIDE_MODEL_DEFAULT: break;
           case STIFFPATH_OUTSIDE_CLAMP: loaded.model->set_outside_policy(sp::compliance::OutsidePolicy::clamp); break;

@@ -58,7 +58,7 @@ typedef enum stiffpath_status {
 
 /** What the compliance model does with a point outside its measured grid. */
 typedef enum stiffpath_outside_policy {
-  STIFFPATH_OUTSIDE_MODEL_DEFAULT = 0, /**< whatever the model file says (clamp for the built-in models) */
+  STIFFPATH_OUTSIDE_MODEL_DEFAULT = 0, /**< the library default: refuse a point more than 1 mm off the grid */
   STIFFPATH_OUTSIDE_CLAMP = 1,         /**< use the nearest point of the grid's rectangle */
   STIFFPATH_OUTSIDE_EXTRAPOLATE = 2,   /**< extend the model's formula */
   STIFFPATH_OUTSIDE_ERROR = 3          /**< refuse the sample (STIFFPATH_OUTSIDE_GRID) */
@@ -145,7 +145,8 @@ STIFFPATH_C_API int stiffpath_inverse(const stiffpath_robot *robot, const double
 
 /** Creates a compensator from a robot (preset or robot file, as stiffpath_robot_load) and a
  *  compliance model: a model file written by `stiffpath fit`, a built-in name ("thesis-oc",
- *  "thesis-sc", "thesis-oc-<method>"), or NULL/"" for the built-in model of the robot's build.
+ *  "thesis-sc", "thesis-oc-<method>"), or NULL/"" for the robot file's own (its "compliance"
+ *  entry: a model file, or its displacement table fitted at creation).
  *  options may be NULL (defaults). Not real-time. On failure returns NULL and writes the reason
  *  into `error` as stiffpath_robot_load does. */
 STIFFPATH_C_API stiffpath_compensator *stiffpath_compensator_create(const char *robot, const char *model,

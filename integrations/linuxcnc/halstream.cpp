@@ -15,7 +15,7 @@
 #include <optional>
 #include <string>
 
-#include "stiffpath/compensation/joint_reader.hpp"
+#include "stiffpath/job/joint_reader.hpp"
 #include "stiffpath/core/atomic_file.hpp"
 #include "stiffpath/core/error.hpp"
 
@@ -37,7 +37,7 @@ void convert(const Options& o, std::ostream& out) {
   if (o.period_ns <= 0) throw Error(fmt::format("--period-ns {}: must be positive", o.period_ns));
   const double scale = o.units == "deg" ? 180.0 / M_PI : 1.0;
   const double period_s = static_cast<double>(o.period_ns) * 1e-9;
-  compensation::JointReader reader(o.input);
+  job::JointReader reader(o.input);
   std::uint64_t n = 0;
   double first_t = 0.0;
   char line[128];

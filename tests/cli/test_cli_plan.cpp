@@ -242,7 +242,10 @@ TEST(CliPlan, EveryNumericMotionFlagRefusesAbsurdValuesWithItsName) {
       SCOPED_TRACE(std::string(flag) + " " + arg);
       ASSERT_NE(r.exit_code, 1) << r.err;
       if (r.exit_code == 2) {
-        EXPECT_NE(r.err.find(flag), std::string::npos) << r.err;
+        // A start or offset the reader accepts can still put the job outside the robot's workspace:
+        // then the refusal names the point instead of the flag.
+        const bool moved_out = pair && r.err.find("outside robot oc-gu's workspace") != std::string::npos;
+        EXPECT_TRUE(r.err.find(flag) != std::string::npos || moved_out) << r.err;
         continue;
       }
       ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -269,7 +269,7 @@ TEST(CliPlanCam, StrictRefusesEachCamProgramListingEveryRefusal) {
     EXPECT_EQ(r.exit_code, 2) << job;
     EXPECT_EQ(r.err.rfind("error: " + (cam / job).string() + ":", 0), 0u) << r.err;
   }
-  EXPECT_EQ(run_cli("plan '" + (cam / "lightburn_grbl.gcode").string() + "' --strict", dir.path()).exit_code, 0);
+  EXPECT_EQ(run_cli("plan '" + (cam / "lightburn_grbl.gcode").string() + "' --strict --work-offset-mm 182.132,-30", dir.path()).exit_code, 0);
 }
 
 }  // namespace

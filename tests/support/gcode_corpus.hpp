@@ -13,7 +13,7 @@
 
 namespace stiffpath::test {
 
-//! A corpus file's header: "; options: strict dwell-ms home=X,Y" (mm) and one "; expect: LINE:COL: …"
+//! A corpus file's header: "; options: strict dwell-ms no-home" and one "; expect: LINE:COL: …"
 //! line per refusal in file order, the file's path omitted; "; expect: … and N more" for the cap.
 struct CorpusCase {
   std::filesystem::path path;
@@ -42,6 +42,8 @@ inline CorpusCase read_corpus_case(const std::filesystem::path& path) {
         } else if (word == "dwell-ms") {
           c.options.dwell_p_units = motion::DwellUnits::milliseconds;
           c.flags.push_back("--dwell-p-units ms");
+        } else if (word == "no-home") {  // a robot file without home_mm: G28 must be refused
+          c.flags.push_back("--robot '" + (path.parent_path().parent_path() / "robots" / "oc-gu-no-home.json").string() + "'");
         } else {
           throw std::runtime_error(path.string() + ": unknown corpus option " + word);
         }

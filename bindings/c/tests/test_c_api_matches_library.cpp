@@ -7,7 +7,7 @@
 
 #include "stiffpath/compensation/compensator.hpp"
 #include "stiffpath/compliance/model_factory.hpp"
-#include "stiffpath/kinematics/mechanism_spec.hpp"
+#include "stiffpath/kinematics/robot.hpp"
 #include "stiffpath/stiffpath.h"
 
 namespace {
@@ -32,7 +32,7 @@ TEST_P(CApi, StepEqualsTheLibrarysStepFieldByField) {
   stiffpath_compensator* capi = stiffpath_compensator_create(c.robot, c.model, &options, error, sizeof error);
   ASSERT_NE(capi, nullptr) << error;
 
-  const auto spec = kinematics::load_mechanism(c.robot);
+  const auto spec = kinematics::load_robot(c.robot);
   const std::shared_ptr<const compliance::Model> model(compliance::load_model(c.model).model.release());
   const compensation::Compensator library(spec, model, {c.gain, true, true});
 
@@ -86,7 +86,7 @@ INSTANTIATE_TEST_SUITE_P(Robots, CApi,
 TEST(CApiKinematics, ForwardAndInverseEqualTheLibrarys) {
   stiffpath_robot* robot = stiffpath_robot_load("sc-gu", nullptr, 0);
   ASSERT_NE(robot, nullptr);
-  const auto five_bar = kinematics::load_mechanism("sc-gu").five_bar();
+  const auto five_bar = kinematics::load_robot("sc-gu").five_bar();
   std::mt19937_64 rng(2);
   std::uniform_real_distribution<double> x(-0.31, 0.31), y(-0.31, 0.31);
   int unreachable = 0;

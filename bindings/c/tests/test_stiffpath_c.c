@@ -191,11 +191,29 @@ static void test_step(void) {
   s.v_m_s[1] = 10.0; /* ≈ 10 / (2 l sin η) ≈ 50 rad/s per joint, over the 40 rad/s limit */
   CHECK(stiffpath_compensator_step(c, &s, &out) == STIFFPATH_JOINT_VELOCITY);
   CHECK(out.joint == 0 || out.joint == 1);
-  s = sample_at(0.2985, 0.0, 0.0, 0.0);
-  CHECK(stiffpath_compensator_step(c, &s, &out) == STIFFPATH_UNREACHABLE);
-  s = sample_at(0.150, 0.0, 0.0, 5.0); /* left of the grid (x ≥ 172 mm): clamped by default */
-  CHECK(stiffpath_compensator_step(c, &s, &out) == STIFFPATH_OK);
+  /* By default a point more than 1 mm off the model's grid (x in 172..272 mm) is refused, not guessed. */
+  s = sample_at(0.150, 0.0, 0.0, 5.0);
+  CHECK(stiffpath_compensator_step(c, &s, &out) == STIFFPATH_OUTSIDE_GRID);
   CHECK(out.outside_grid == 1);
+  {
+    stiffpath_options clamp = stiffpath_default_options();
+    clamp.outside_policy = STIFFPATH_OUTSIDE_CLAMP;
+    stiffpath_compensator *clamped = stiffpath_compensator_create("oc-gu", NULL, &clamp, error, sizeof error);
+    CHECK(clamped != NULL);
+    if (clamped) {
+      stiffpath_joint_command held;
+      CHECK(stiffpath_compensator_step(clamped, &s, &held) == STIFFPATH_OK);
+      CHECK(held.outside_grid == 1);
+      double p_held[2];
+      CHECK(stiffpath_forward(stiffpath_compensator_robot(clamped), held.q_rad, p_held) == STIFFPATH_OK);
+      CHECK_NEAR(p_held[0], held.command_m[0], 1e-13);
+      s = sample_at(0.2985, 0.0, 0.0, 0.0); /* beyond the stretched-out margin (295 mm) */
+      CHECK(stiffpath_compensator_step(clamped, &s, &held) == STIFFPATH_UNREACHABLE);
+      stiffpath_compensator_free(clamped);
+    }
+  }
+  s = sample_at(0.222132, 0.05, 0.0, 5.0);
+  CHECK(stiffpath_compensator_step(c, &s, &out) == STIFFPATH_OK);
 
   /* The compensator's robot is the one it was created with. */
   double p[2];
@@ -321,7 +339,9 @@ static void test_errors(const char *scratch_dir) {
   FILE *f = fopen(path, "w");
   CHECK(f != NULL);
   if (f) {
-    fputs("{\"name\": \"bad\", \"description\": \"\", \"build\": \"OC\", \"link_length_mm\": -150.0,\n"
+    fputs("{\"name\": \"bad\", \"description\": \"\", \"left_actuator_mm\": [0, 0], \"right_actuator_mm\": [0, 0],\n"
+          " \"left_proximal_mm\": -150.0, \"right_proximal_mm\": 150, \"left_distal_mm\": 150, \"right_distal_mm\": 150,\n"
+          " \"elbows\": [1, -1],\n"
           " \"moving_mass_kg\": 3.6, \"cg\": {\"label\": \"G_U\", \"height_above_G_mm\": 35.9},\n"
           " \"measurement\": {\"UG_mm\": 69.0, \"UL_mm\": 160.0},\n"
           " \"joints\": [{\"name\": \"theta1\", \"min_deg\": -45, \"max_deg\": 135, \"max_velocity_rad_s\": 40,\n"
@@ -329,12 +349,13 @@ static void test_errors(const char *scratch_dir) {
           "            {\"name\": \"theta2\", \"min_deg\": -135, \"max_deg\": 45, \"max_velocity_rad_s\": 40,\n"
           "             \"max_acceleration_rad_s2\": 4000}],\n"
           " \"singularity_margin\": {\"min_distance_mm\": 5.0, \"max_condition_number\": 8.0},\n"
-          " \"compliance\": {\"dataset\": \"thesis/displacements.csv\"}}\n",
+          " \"compliance\": {\"table\": \"builtin:thesis/displacements.csv\"}}\n",
           f);
     fclose(f);
     CHECK(stiffpath_compensator_create(path, NULL, NULL, error, sizeof error) == NULL);
     CHECK(strstr(error, "bad_robot.json") != NULL);
-    CHECK(strstr(error, "link_length_mm") != NULL);
+    CHECK(strstr(error, "left_proximal_mm") != NULL);
+    CHECK(strstr(error, "-150.0") != NULL);
     remove(path);
   }
 
