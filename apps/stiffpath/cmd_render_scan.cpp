@@ -1,4 +1,5 @@
 // `stiffpath render-scan`: draws a synthetic scan of a marked path and reports its ground truth.
+#include <cmath>
 #include <fmt/format.h>
 #include <memory>
 #include <numbers>
@@ -19,7 +20,7 @@ namespace {
 struct RenderCliOptions {
   std::string output, shape = "line", vertices_mm, path_csv, truth;
   double length_mm = 100, side_mm = 40, angle_deg = 0, width_mm = 0.2, margin_mm = 2;
-  double wiggle_mm = 0, wiggle_wavelength_mm = 10, wiggle_decay_mm = 40;
+  double wiggle_mm = 0, wiggle_wavelength_mm = 10, wiggle_decay_mm = 40, trim_mm = 1.0;
   int sides = 1;
   bool json = false;
   vision::RenderOptions render;
@@ -50,11 +51,8 @@ std::pair<std::vector<std::vector<evaluation::Point2>>, bool> read_path(const st
     if (points.empty() || (p - points.back()).norm() > 1e-12) points.push_back(p);  // a robot at rest repeats points
   }
   if (points.size() < 2) throw Error(SourceLocation{path, 0, 0}, "a path needs at least two points");
-  // Drawn and measured as the polyline through the points, sampled every 20 µm.
-  std::vector<evaluation::Point2> dense;
-  for (const auto& piece : vision::sample_shape({points, false}, {})) {
-    dense.insert(dense.end(), piece.begin() + (dense.empty() ? 0 : 1), piece.end());
-  }
+  // Drawn and measured as the polyline through the points, resampled every 20 µm of its length.
+  const std::vector<evaluation::Point2> dense = vision::resample_path(points);
   if (sides == 1) return {{dense}, false};
   auto split = evaluation::split_polyline(dense, sides);
   return {split.sides, split.closed};
@@ -64,6 +62,8 @@ void run_render(RenderCliOptions& o) {
   o.render.mark_width_m = o.width_mm * 1e-3;
   o.render.rotation_rad = o.angle_deg * std::numbers::pi / 180.0;
   o.render.margin_m = o.margin_mm * 1e-3;
+  if (!(o.trim_mm >= 0.0) || !std::isfinite(o.trim_mm)) throw Error(fmt::format("--corner-trim-mm must be >= 0, got {}", o.trim_mm));
+  o.render.truth_options.corner_trim_m = o.trim_mm * 1e-3;
   const vision::Wiggle wiggle{o.wiggle_mm * 1e-3, o.wiggle_wavelength_mm * 1e-3, o.wiggle_decay_mm * 1e-3};
   std::vector<std::vector<evaluation::Point2>> sides;
   bool closed = false;
@@ -121,6 +121,7 @@ void add_render_scan_command(CLI::App& app) {
   cmd->add_option("--wiggle-mm", o->wiggle_mm, "Initial amplitude of a decaying vibration (mm)")->capture_default_str();
   cmd->add_option("--wiggle-wavelength-mm", o->wiggle_wavelength_mm, "Its wavelength along the path (mm)")->capture_default_str();
   cmd->add_option("--wiggle-decay-mm", o->wiggle_decay_mm, "Its decay length along the path (mm)")->capture_default_str();
+  cmd->add_option("--corner-trim-mm", o->trim_mm, "Corner trim of the ground truth's metrics (mm), as for scan")->capture_default_str();
   cmd->add_option("--dpi", o->render.dpi, "Resolution (dpi)")->capture_default_str();
   cmd->add_option("--blur-px", o->render.blur_px, "Scanner blur sigma (px)")->capture_default_str();
   cmd->add_option("--noise", o->render.noise, "Pixel noise sigma (fraction of full scale)")->capture_default_str();

@@ -65,6 +65,12 @@ struct RenderedScan {
 //! wiggle along the whole path. One point list per side; consecutive sides share their corner.
 std::vector<std::vector<Point2>> sample_shape(const PathShape& shape, const Wiggle& wiggle, double step_m = 20e-6);
 
+//! Resamples a path given by points in marking order (m) at equal arc-length steps of at most
+//! `step_m`, keeping its first and last point. A path sampled in time (a simulated mark) is dense
+//! where the spot moves slowly; resampled, every part of it weighs by its length in the metrics, as
+//! the cross-sections of a scan do. Throws stiffpath::Error for fewer than two distinct points.
+std::vector<Point2> resample_path(const std::vector<Point2>& points, double step_m = 20e-6);
+
 //! Renders sides (points in m, any frame): rotates them, places them `margin_m` inside an image
 //! just large enough, draws the mark as every point within mark_width/2 of the path (a round
 //! laser spot: round ends) with area-sampled anti-aliasing, then blur, paper texture, shading,
