@@ -35,6 +35,8 @@ int parse_sides(const std::string& shape) {
 void run_scan(const ScanCliOptions& o) {
   vision::ScanOptions options;
   options.sides = parse_sides(o.shape);
+  if (o.shape == "triangle") options.metrics.closure = evaluation::Closure::closed;
+  if (o.shape == "line") options.metrics.closure = evaluation::Closure::open;
   if (!(o.cutoff_mm >= 0.0) || !(o.trim_mm >= 0.0)) throw Error("--spline-cutoff-mm and --corner-trim-mm must be >= 0");
   options.metrics.smoothing_cutoff_m = o.cutoff_mm * 1e-3;
   options.metrics.corner_trim_m = o.trim_mm * 1e-3;

@@ -74,6 +74,7 @@ MarkComponent find_mark(const CoarseGrid& grid, double px_per_m, const ScanOptio
   }
 
   mark.label = main.label;
+  mark.box = b;
   std::vector<double> dark;
   for (int y = b.y; y < b.y + b.height; ++y) {
     const int* lab = mark.labels.ptr<int>(y);

@@ -37,8 +37,8 @@ ScanResult analyse_scan(const cv::Mat& grey, double dpi, const ScanOptions& opti
   std::vector<std::vector<Point2>> points;
   std::vector<double> widths;
   std::size_t sections = 0, rejected = 0;
-  for (const auto& side : path.sides) {
-    detail::SideTrace trace = detail::trace_side(grey, grid, mark, side, px_per_m, options);
+  for (std::size_t k = 0; k < path.sides.size(); ++k) {
+    detail::SideTrace trace = detail::trace_side(grey, grid, path, k, px_per_m, options);
     ScanSide s;
     if (trace.start_cap) s.centres.push_back(*trace.start_cap / px_per_m);
     for (const auto& c : trace.centres) s.centres.push_back(c / px_per_m);
@@ -49,6 +49,7 @@ ScanResult analyse_scan(const cv::Mat& grey, double dpi, const ScanOptions& opti
     sections += trace.sections;
     rejected += trace.rejected;
     for (const double w : trace.widths) widths.push_back(w / px_per_m);
+    result.length_uncertainty_m += trace.end_uncertainty / px_per_m;
     result.mark_darkness += trace.darkness / static_cast<double>(path.sides.size());
     result.warnings.insert(result.warnings.end(), trace.warnings.begin(), trace.warnings.end());
     points.push_back(s.centres);
@@ -60,7 +61,7 @@ ScanResult analyse_scan(const cv::Mat& grey, double dpi, const ScanOptions& opti
   for (auto& corner : result.metrics.corners) corner.path_distance_m.reset();  // corner zones are not traced on scans
   if (result.specks_ignored > 0) result.warnings.push_back(fmt::format("ignored {} dust speck(s)", result.specks_ignored));
   if (rejected > sections / 100) {
-    result.warnings.push_back(fmt::format("{} of {} cross-sections were left out as outliers (dust on the mark or gaps)",
+    result.warnings.push_back(fmt::format("{} of {} cross-sections were left out as outliers (dust on the mark, gaps, or bends too sharp for the cross-sections)",
                                           rejected, sections));
   }
   return result;

@@ -38,6 +38,7 @@ struct MarkComponent {
   double width_px = 0;           //!< rough width: area / half the contour length
   int specks = 0;
   std::vector<std::string> warnings;
+  cv::Rect box;                  //!< bounding box of its cells (cells)
 };
 MarkComponent find_mark(const CoarseGrid& grid, double px_per_m, const ScanOptions& options);
 
@@ -48,9 +49,18 @@ struct CoarseSide {
   bool start_is_corner = false, end_is_corner = false;
   double start_angle_rad = 0, end_angle_rad = 0;  //!< interior angle at a corner
 };
+//! Marks a cell that belongs to no side.
+inline constexpr std::uint8_t kNoSide = 255;
 struct CoarsePath {
   std::vector<CoarseSide> sides;
   bool closed = false;
+  double width_px = 0;  //!< the mark's rough width (px)
+  cv::Rect box;   //!< the mark's bounding box (cells)
+  cv::Mat owner;  //!< CV_8U over `box`: the side (index in `sides`) owning each cell of the mark, else kNoSide
+  //! The side owning grid cell (gx, gy), or kNoSide.
+  [[nodiscard]] int owner_at(int gx, int gy) const {
+    return box.contains(cv::Point(gx, gy)) ? owner.at<std::uint8_t>(gy - box.y, gx - box.x) : kNoSide;
+  }
 };
 CoarsePath find_sides(const MarkComponent& mark, int n_sides, double px_per_m, const ScanOptions& options);
 
@@ -62,9 +72,11 @@ struct SideTrace {
   std::size_t sections = 0, rejected = 0;
   double width = 0;                       //!< median width (px)
   double darkness = 0;                    //!< darkness of the mark's core
+  double end_uncertainty = 0;             //!< sum of the free ends' error bounds along the side (px; 0 for round ends)
   std::vector<std::string> warnings;
 };
-SideTrace trace_side(const cv::Mat& grey, const CoarseGrid& grid, const MarkComponent& mark, const CoarseSide& side,
-                     double px_per_m, const ScanOptions& options);
+//! Side `k` of `path`.
+SideTrace trace_side(const cv::Mat& grey, const CoarseGrid& grid, const CoarsePath& path, std::size_t k, double px_per_m,
+                     const ScanOptions& options);
 
 }  // namespace stiffpath::vision::detail

@@ -39,6 +39,10 @@ struct ScanResult {
   evaluation::PathMetrics metrics;  //!< length, deviation area, max deviation, straightness, sides, corners
   std::vector<ScanSide> sides;      //!< same order as metrics.sides
   double width_m = 0;               //!< median mark width over all sides (m)
+  //! Bound on the length's error from free ends that are not round laser-spot ends (m): 0 when every
+  //! free end is round (then the length is good to a few µm, docs/vision.md), else the sum of their
+  //! bounds, each also stated in a warning.
+  double length_uncertainty_m = 0;
   double mark_darkness = 0;         //!< 1 − mark/paper brightness of the fully marked core
   double paper_noise = 0;           //!< robust σ of the paper's relative brightness at the coarse grid
   int specks_ignored = 0;           //!< dark features below min_mark_length_m that were ignored
