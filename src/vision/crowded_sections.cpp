@@ -58,10 +58,10 @@ void drop_crowded_sections(SideSections& ss, const CoarseSide& coarse, double re
     if (reach <= trim) continue;
     const double need_mm = std::ceil((reach + 2.0 * cell) / px_per_m * 1e4) / 10;
     throw Error(SourceLocation{o.label, 0, 0},
-                fmt::format("at the corner near x = {:.2f} mm, y = {:.2f} mm the two sides run so close together that a side can "
+                fmt::format("at the corner near {} the two sides run so close together that a side can "
                             "only be measured from {:.2f} mm of the corner on, farther than the {:.2f} mm corner trim: the "
                             "number would not be the side's; measure with a corner trim of at least {:.1f} mm "
-                            "(--corner-trim-mm)", at.x() / px_per_m * 1e3, at.y() / px_per_m * 1e3, reach / px_per_m * 1e3,
+                            "(--corner-trim-mm)", position_text(at, px_per_m, o), reach / px_per_m * 1e3,
                             o.metrics.corner_trim_m * 1e3, need_mm));
   }
   // The body's first and last sections must still be body sections for the free-end and slope code.

@@ -21,7 +21,8 @@ struct Link {
 
 // The loose ends of sides that did not meet, for an error message: where each end is and how far it is
 // from the nearest crossing of its line with another side's.
-std::string loose_ends(const std::vector<FoundSide>& found, const std::vector<std::array<int, 2>>& partner, double px_per_m) {
+std::string loose_ends(const std::vector<FoundSide>& found, const std::vector<std::array<int, 2>>& partner, double px_per_m,
+                       const ScanOptions& options) {
   std::string out;
   const auto mm = [&](double px) { return px / px_per_m * 1e3; };
   for (std::size_t i = 0; i < found.size(); ++i) {
@@ -33,7 +34,7 @@ std::string loose_ends(const std::vector<FoundSide>& found, const std::vector<st
         if (j == i) continue;
         if (const auto x = evaluation::intersect(found[i].line, found[j].line)) nearest = std::min(nearest, (*x - end).norm());
       }
-      out += fmt::format("{}side end at x = {:.2f} mm, y = {:.2f} mm{}", out.empty() ? "" : "; ", mm(end.x()), mm(end.y()),
+      out += fmt::format("{}side end at {}{}", out.empty() ? "" : "; ", position_text(end, px_per_m, options),
                          nearest < 1e299 ? fmt::format(" ({:.2f} mm from the nearest corner)", mm(nearest)) : "");
     }
   }
@@ -125,11 +126,11 @@ CoarsePath find_sides(const MarkComponent& mark, int n, double px_per_m, const S
   path.closed = n >= 3 && link_count == n;
   if (closure == Closure::closed && !path.closed) {
     throw Error(where, fmt::format("the {} sides found do not close into a loop, so the closed mark cannot be measured: {}", n,
-                                   loose_ends(found, partner, px_per_m)));
+                                   loose_ends(found, partner, px_per_m, options)));
   }
   if (link_count != (path.closed ? n : n - 1)) {
     throw Error(where, fmt::format("the {} sides found do not join into one path ({} of their corners meet): {}", n, link_count,
-                                   loose_ends(found, partner, px_per_m)));
+                                   loose_ends(found, partner, px_per_m, options)));
   }
   // Walk the chain from its start: the free end nearest the left edge, or for a loop the left-most corner.
   auto key = [](const Point2& p) { return p.x() + 1e-6 * p.y(); };

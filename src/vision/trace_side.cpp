@@ -98,8 +98,8 @@ SideTrace trace_side(const cv::Mat& grey, const CoarseGrid& grid, const CoarsePa
     const double need = (h_wide0 + o.flank_px + w0 / 2 + 4) / std::max(std::sin(angle), 0.1);
     const double want = o.metrics.corner_trim_m * px_per_m;
     if (need > want) {
-      out.warnings.push_back(fmt::format("the corner at x = {:.2f} mm, y = {:.2f} mm is sharp ({:.0f}°): cross-sections stop "
-                                         "{:.2f} mm from it", to_mm(at.x()), to_mm(at.y()), angle * 180 / std::numbers::pi, to_mm(need)));
+      out.warnings.push_back(fmt::format("the corner at {} is sharp ({:.0f}°): cross-sections stop "
+                                         "{:.2f} mm from it", position_text(at, px_per_m, o), angle * 180 / std::numbers::pi, to_mm(need)));
     }
     // Sections run a little closer than the trim to the coarse corner: the metrics trim again at the
     // measured corner, by the same distance as for simulated paths, so the coarse corner's error and a
@@ -226,15 +226,15 @@ SideTrace trace_side(const cv::Mat& grey, const CoarseGrid& grid, const CoarsePa
     const FreeEnd end = measure_free_end(ss, body_line, low, o);
     ((da > 0) == low ? out.start_cap : out.end_cap) = end.cap;
     if (end.continues) {
-      throw Error(where, fmt::format("the mark goes on past the end of a side near x = {:.2f} mm, y = {:.2f} mm, so that end "
+      throw Error(where, fmt::format("the mark goes on past the end of a side near {}, so that end "
                                      "cannot be measured: it is not a free end (a corner that was not found, or a mark with "
-                                     "more sides than asked for)", to_mm(end.cap.x()), to_mm(end.cap.y())));
+                                     "more sides than asked for)", position_text(end.cap, px_per_m, o)));
     }
     if (!end.round) {
       out.end_uncertainty += end.uncertainty_px;
-      out.warnings.push_back(fmt::format("the mark's end near x = {:.2f} mm, y = {:.2f} mm is not a round laser-spot end "
+      out.warnings.push_back(fmt::format("the mark's end near {} is not a round laser-spot end "
                                          "(tip radius {:.3f} mm for a {:.3f} mm wide mark); its position along the side may be off "
-                                         "by up to {:.3f} mm", to_mm(end.cap.x()), to_mm(end.cap.y()), to_mm(end.radius),
+                                         "by up to {:.3f} mm", position_text(end.cap, px_per_m, o), to_mm(end.radius),
                                          to_mm(out.width), to_mm(end.uncertainty_px)));
     }
   }
