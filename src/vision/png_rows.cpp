@@ -2,6 +2,7 @@
 #include <csetjmp>
 #include <fmt/format.h>
 #include <png.h>
+#include <zlib.h>
 
 #include "stiffpath/core/atomic_file.hpp"
 #include "stiffpath/core/error.hpp"
@@ -74,7 +75,11 @@ PngRowWriter::PngRowWriter(const std::filesystem::path& path, int width, int hei
                  channels == 1 ? PNG_COLOR_TYPE_GRAY : PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                  PNG_FILTER_TYPE_DEFAULT);
     png_set_pHYs(impl.png, impl.info, ppm, ppm, PNG_RESOLUTION_METER);
-    png_set_compression_level(impl.png, 1);  // as OpenCV's default: fast, scans compress little anyway
+    // As OpenCV writes PNGs: the Sub filter on every row, run-length deflate at level 1 (fast; a scan's
+    // noise compresses little anyway; trying every filter per row doubles the time for 10 % of size).
+    png_set_filter(impl.png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
+    png_set_compression_strategy(impl.png, Z_RLE);
+    png_set_compression_level(impl.png, 1);
     png_write_info(impl.png, impl.info);
     if (channels == 3) png_set_bgr(impl.png);
     if (depth == CV_16U) png_set_swap(impl.png);  // rows in memory are little-endian on our targets

@@ -14,7 +14,7 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 
 // A small plate like the thesis's (fig. 4.7): a y line, an x line and a triangle with labels, shortened so
-// the test stays quick (80 × 70 mm at 1200 dpi, 7.8 Mpx).
+// the test stays quick (80 × 70 mm at 1200 dpi, 12.5 Mpx).
 Plate small_plate() {
   Plate plate;
   plate.width_m = 80e-3;
