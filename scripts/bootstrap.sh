@@ -7,7 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libcli11-dev nlohmann-json3-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libopencv-dev gnuplot-nox
+  libopencv-dev libpng-dev gnuplot-nox
   python3 python3-dev pybind11-dev python3-numpy
 )
 for group in "$@"; do
