@@ -54,7 +54,7 @@ TEST(Twin, CampaignFitRecoversTruthAtGridPoints) {
 
 TEST(Twin, TrueComplianceIsSymmetricPositiveDefiniteAndPerturbed) {
   const auto oc = kinematics::load_robot("oc-gu");
-  const auto base = make_true_compliance(oc, {"", 0.0, 1});
+  const auto base = make_true_compliance(oc, TrueComplianceOptions{"", 0.0, 1, "structural", nullptr});
   const auto truth = make_true_compliance(oc);
   double max_rel = 0;
   for (double x = 0.172132; x <= 0.2722; x += 0.025) {
@@ -71,7 +71,7 @@ TEST(Twin, TrueComplianceIsSymmetricPositiveDefiniteAndPerturbed) {
   kinematics::Robot no_data = oc;
   no_data.compliance = {};
   EXPECT_THROW(make_true_compliance(no_data), Error);
-  EXPECT_THROW(make_true_compliance(oc, {"", 0.9, 1}), Error);
+  EXPECT_THROW(make_true_compliance(oc, TrueComplianceOptions{"", 0.9, 1, "structural", nullptr}), Error);
 }
 
 // The y motion at 5 g on OC G_U. On the twin that shares the compensation's assumptions (C_true physical,
