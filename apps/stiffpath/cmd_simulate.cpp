@@ -5,9 +5,11 @@
 
 #include "commands.hpp"
 #include "robot_flags.hpp"
+#include "twin_flags.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/job/joint_reader.hpp"
 #include "stiffpath/core/atomic_file.hpp"
+#include "stiffpath/simulation/cg_lever.hpp"
 #include "stiffpath/simulation/run_metrics.hpp"
 #include "stiffpath/simulation/twin_models.hpp"
 
@@ -18,8 +20,8 @@ struct SimulateArgs {
   std::string joints;
   std::string robot;  // default: the binary file's robot (a preset), else oc-gu
   int sides = 1;
-  double perturbation = simulation::TrueComplianceOptions{}.perturbation;
-  std::uint64_t seed = simulation::TrueComplianceOptions{}.seed;
+  simulation::TrueComplianceOptions truth;
+  TwinFlags twin;
   simulation::SimulationOptions sim;
   std::string marks_csv;
   bool json = false;
@@ -58,9 +60,13 @@ void simulate(const SimulateArgs& a) {
   } else {
     robot = load_robot_flag("");
   }
-  const auto truth = simulation::make_true_compliance(robot, {"", a.perturbation, a.seed});
+  simulation::TrueComplianceOptions truth_options = a.truth;
+  simulation::SimulationOptions sim = a.sim;
+  apply_twin_flags(a.twin, sim, truth_options);
+  if (!a.twin.no_cg_lever) sim.cg_lever = simulation::make_cg_lever(robot);
+  const auto truth = simulation::make_true_compliance(robot, truth_options);
   const simulation::SimulationResult run =
-      simulation::simulate([&reader] { return reader.next(); }, robot, truth, a.sim);
+      simulation::simulate([&reader] { return reader.next(); }, robot, truth, sim);
   const simulation::RunMetrics m = simulation::measure_run(run, a.sides);
   if (!a.marks_csv.empty()) write_marks(a.marks_csv, run);
   const auto corner_metric = [&m](double value_m) -> nlohmann::json {
@@ -84,8 +90,9 @@ void simulate(const SimulateArgs& a) {
                 {"peak_deflection_mm", tidy(m.peak_deflection_m * 1e3)}});
     return;
   }
-  fmt::print("{}: simulated {:.4f} s on {} (C_true perturbation {:g}, seed {})\n", a.joints, run.duration_s, robot.name,
-             a.perturbation, a.seed);
+  fmt::print("{}: simulated {:.4f} s on {} (C_true {} perturbed {:g}, seed {}; {} servo{})\n", a.joints, run.duration_s,
+             robot.name, truth_options.family, truth_options.perturbation, truth_options.seed, a.twin.servo,
+             sim.cg_lever ? ", CG lever" : "");
   fmt::print("  length {:.4f} mm (commanded {:.4f} mm, error {:+.4f} mm)\n", m.length_m * 1e3,
              m.commanded_length_m * 1e3, m.length_error_m * 1e3);
   fmt::print("  deviation area {:.4f} mm^2, max deviation {:.4f} mm, path accuracy AT_p {:.4f} mm\n",
@@ -107,15 +114,8 @@ void add_simulate_command(CLI::App& app) {
                                             "file's preset, else oc-gu); its data give C_true");
   cmd->add_option("--sides", a->sides, "Straight sides of the path: 1 (line) or 3 (triangle)")
       ->check(CLI::Range(1, 12))->capture_default_str();
-  cmd->add_option("--perturbation", a->perturbation, "Relative perturbation of C_true")
-      ->check(CLI::Range(0.0, 0.5))->capture_default_str();
-  cmd->add_option("--seed", a->seed, "Seed of the perturbation")->capture_default_str();
-  cmd->add_option("--damping-ratio", a->sim.plant.tip_damping_ratio, "Damping ratio of the tip's modes")
-      ->check(CLI::Range(0.0, 2.0))->capture_default_str();
-  cmd->add_option("--servo-bandwidth-hz", a->sim.plant.servo_bandwidth_hz, "Joint position-loop bandwidth")
-      ->check(CLI::PositiveNumber)->capture_default_str();
-  cmd->add_option("--step-rate-hz", a->sim.plant.step_rate_hz, "Integration rate")
-      ->check(CLI::Range(1000.0, 1e7))->capture_default_str();
+  cmd->add_option("--seed", a->truth.seed, "Seed of the perturbation")->capture_default_str();
+  add_twin_flags(cmd, a->twin, a->sim, a->truth);
   cmd->add_option("--marks-csv", a->marks_csv, "Also write the mark (x_mm, y_mm, y down) for `render-scan --path-csv`");
   cmd->add_flag("--json", a->json, "Print the metrics as JSON");
   cmd->callback([a] { simulate(*a); });

@@ -37,12 +37,17 @@ void check_finite(const Plant& plant, double t) {
 
 SimulationResult simulate(const JointSource& source, const kinematics::Robot& robot_spec,
                           std::shared_ptr<const compliance::Model> truth, const SimulationOptions& options) {
+  if (!(options.mass_scale > 0.0 && options.mass_scale < 10.0)) {
+    throw Error(fmt::format("simulation: mass_scale {} outside (0, 10)", options.mass_scale));
+  }
   if (!(options.settle_s >= 0.0) || !(options.mark_rate_hz > 0.0)) {
     throw Error(fmt::format("simulation: settle_s {} must be ≥ 0 and mark_rate_hz {} > 0", options.settle_s,
                             options.mark_rate_hz));
   }
   const kinematics::FiveBar robot = robot_spec.five_bar();
-  Plant plant(robot, std::move(truth), robot_spec.moving_mass_kg, options.plant);
+  PlantOptions plant_options = options.plant;
+  if (plant_options.controller_mass_kg == 0.0) plant_options.controller_mass_kg = robot_spec.moving_mass_kg;
+  Plant plant(robot, std::move(truth), robot_spec.moving_mass_kg * options.mass_scale, plant_options, options.cg_lever);
   SimulationResult out;
   auto first = source();
   if (!first) throw Error("simulation: the joint trajectory is empty");

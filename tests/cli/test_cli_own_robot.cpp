@@ -173,8 +173,8 @@ TEST(CliOwnRobot, SimulateAndExperimentUseTheRobotsTwin) {
   const CliResult e = w.run("experiment --robot robot.json --accelerations-g 5 -o out --no-plots");
   ASSERT_EQ(e.exit_code, 0) << e.err;
   const auto rows = read_csv(w.dir / "out" / "results.csv");
-  ASSERT_EQ(rows.size(), 1U + 2 * 3);  // header, {without, with} × {x, y, triangle}
-  double length[2][3] = {};
+  ASSERT_EQ(rows.size(), 1U + 3 * 3);  // header, {without, thesis, default} × {x, y, triangle}
+  double length[3][3] = {};
   for (std::size_t k = 1; k < rows.size(); ++k) {
     EXPECT_EQ(rows[k][0], "asym");
     const int motion = rows[k][4] == "x" ? 0 : rows[k][4] == "y" ? 1 : 2;
@@ -184,9 +184,14 @@ TEST(CliOwnRobot, SimulateAndExperimentUseTheRobotsTwin) {
     } else if (motion == 1) {
       EXPECT_NEAR(commanded, 80.0, 1e-6);  // y ∈ [170, 250] mm at x = 0
     }
-    length[rows[k][3] == "1" ? 1 : 0][motion] = std::abs(std::stod(rows[k][9]));
+    const int variant = rows[k][3] == "0" ? 0 : rows[k].back() == "thesis" ? 1 : 2;
+    length[variant][motion] = std::abs(std::stod(rows[k][9]));
   }
-  for (int motion = 0; motion < 3; ++motion) EXPECT_LT(length[1][motion], 0.5 * length[0][motion]) << motion;
+  for (int variant = 1; variant < 3; ++variant) {
+    for (int motion = 0; motion < 3; ++motion) {
+      EXPECT_LT(length[variant][motion], 0.5 * length[0][motion]) << variant << ' ' << motion;
+    }
+  }
 }
 
 TEST(CliOwnRobot, DataCheckAndTheExperimentOnAUsersOwnPath) {
@@ -200,7 +205,8 @@ TEST(CliOwnRobot, DataCheckAndTheExperimentOnAUsersOwnPath) {
   // A closed square of the user's as the only path of the experiment.
   write_text(w.dir / "square.gcode",
              "G21 G90\nG61\nG0 X-30 Y180\nM3 S100\nG1 X30 Y180 F120000\nG1 X30 Y240\nG1 X-30 Y240\nG1 X-30 Y180\nM5\n");
-  const CliResult e = w.run("experiment --robot robot.json --path square.gcode:4 --accelerations-g 3 -o out --no-plots");
+  const CliResult e = w.run("experiment --robot robot.json --path square.gcode:4 --accelerations-g 3 --variants thesis -o out "
+                            "--no-plots");
   ASSERT_EQ(e.exit_code, 0) << e.err;
   const auto rows = read_csv(w.dir / "out" / "results.csv");
   ASSERT_EQ(rows.size(), 3U);

@@ -17,6 +17,11 @@ struct SimulationOptions {
   PlantOptions plant;
   double settle_s = 0.10;          //!< time simulated after the last command, holding it (residual vibration)
   double mark_rate_hz = 10000.0;   //!< rate at which the laser's mark is recorded (≤ the step rate)
+  //! The CG lever added to C_true for the inertial load (make_cg_lever); null = the CG at G.
+  std::shared_ptr<const compliance::Model> cg_lever;
+  //! The plant's moving mass relative to the robot's (what the controller and compensation assume): 1.25 =
+  //! 25 % heavier than believed.
+  double mass_scale = 1.0;
 };
 
 //! What a simulated job produced. Points in m.
