@@ -25,9 +25,13 @@ struct PlannerOptions {
 
 //! Counters of a planning run.
 struct PlannerStatistics {
-  std::size_t segments = 0;         //!< planned segments handed out
-  std::size_t peak_window = 0;      //!< largest number of segments held at once
-  std::size_t forced_releases = 0;  //!< segments released early because the window was full
+  std::size_t segments = 0;          //!< planned segments handed out
+  std::size_t peak_window = 0;       //!< largest number of segments held at once
+  std::size_t forced_releases = 0;   //!< segments released early because the window was full
+  //! Entry speeds evaluated by the backward passes (each one reachable_speed). Passes are batched
+  //! so that this stays at most 2·(segments + peak_window + 1) however long the braking distances
+  //! are; on CAM programs, whose windows are short, it is 2 per segment.
+  std::size_t entry_evaluations = 0;
 };
 
 //! Plans the segments of a PathSource with look-ahead over the whole program and hands them out
@@ -51,8 +55,10 @@ class Planner final : public SegmentSource {
     SegmentLimits limits;
     double entry_limit_m_s = 0.0;  // junction rules at the start
     double entry_max_m_s = 0.0;    // after the backward pass over the window
+    double reach_from_rest_m_s = 0.0;  // reachable_speed(length, 0): the exit-independent part of the entry bound
   };
   void push(const PathSegment& segment);
+  void backward_pass();
   [[nodiscard]] double exit_max(std::size_t i) const noexcept;
   [[nodiscard]] double entry_bound(const Node& node, double exit_max_m_s) const noexcept;
   PlannedSegment release();
@@ -65,6 +71,8 @@ class Planner final : public SegmentSource {
   std::size_t pinned_end_ = 0;    // 1 + program index of the last pinned junction's segment (0: none)
   double entry_speed_m_s_ = 0.0;  // committed speed at the start of window_.front()
   double clock_s_ = 0.0;
+  std::size_t pending_ = 0;       // segments pushed since the last backward pass (at the window's end)
+  std::size_t pass_depth_ = 0;    // earlier segments the last backward pass changed
   bool exhausted_ = false;
   PlannerStatistics statistics_;
 };
