@@ -30,6 +30,28 @@ std::optional<CornerFillet> corner_fillet(const Vec2& corner_m, const Vec2& in, 
   return fillet;
 }
 
+std::optional<PathSegment> arc_absorbing_line(const Vec2& line_start_m, const Vec2& in, const CornerFillet& fillet,
+                                              double max_kink_rad) noexcept {
+  // The circle through the line's start and the fillet's exit, tangent at the exit: its centre lies
+  // on the exit's normal at ρ = |p − x|² / (2 (p − x)·n).
+  const double side = fillet.sweep_rad > 0.0 ? 1.0 : -1.0;
+  const Vec2 exit_tangent = (fillet.exit_m - fillet.center_m).norm() > 0.0
+                                ? Vec2(side * left_normal(fillet.exit_m - fillet.center_m).normalized())
+                                : Vec2(in);
+  const Vec2 normal = side * left_normal(exit_tangent);  // towards the centre
+  const Vec2 chord = line_start_m - fillet.exit_m;
+  const double along = chord.dot(normal);
+  if (!(along > 0.0)) return std::nullopt;
+  const double radius = chord.squaredNorm() / (2.0 * along);
+  const Vec2 center = fillet.exit_m + radius * normal;
+  const Vec2 from = line_start_m - center, to = fillet.exit_m - center;
+  const double sweep = std::atan2(from.x() * to.y() - from.y() * to.x(), from.dot(to));
+  if (!(sweep * side > 0.0)) return std::nullopt;
+  PathSegment arc = make_arc(line_start_m, fillet.exit_m, center, sweep);
+  if (!(turn_angle_rad(in, start_tangent(arc)) <= max_kink_rad)) return std::nullopt;
+  return arc;
+}
+
 CornerBlender::CornerBlender(PathSource& source, double corner_angle_rad)
     : source_(source), corner_angle_rad_(corner_angle_rad) {}
 
@@ -61,12 +83,16 @@ std::optional<PathSegment> CornerBlender::next() {
       fillet = corner_fillet(a.end_m, in, out, a.blend_tolerance_m, 0.5 * std::min(held_length_m_, b.length_m));
     }
     if (fillet) {
-      // If the two blends of a line leave (almost) nothing of it, the arc starts where the line did.
       a.end_m = fillet->entry_m;
       a.length_m = (a.end_m - a.start_m).norm();
-      const bool keep_line = a.length_m >= shortest_segment_m;
-      PathSegment arc = make_arc(keep_line ? fillet->entry_m : a.start_m, fillet->exit_m, fillet->center_m,
-                                 fillet->sweep_rad);
+      // If the two blends of a line leave (almost) nothing of it, the arc starts where the line did.
+      std::optional<PathSegment> absorbing =
+          a.length_m <= 0.1 * a.blend_tolerance_m ? arc_absorbing_line(a.start_m, in, *fillet, 0.25 * corner_angle_rad_)
+                                                  : std::nullopt;
+      const bool keep_line = !absorbing && a.length_m >= shortest_segment_m;
+      PathSegment arc = absorbing ? *absorbing
+                                  : make_arc(keep_line ? fillet->entry_m : a.start_m, fillet->exit_m, fillet->center_m,
+                                             fillet->sweep_rad);
       arc.feed_m_s = std::min(a.feed_m_s, b.feed_m_s);
       arc.laser_power = a.laser_power;
       arc.blend_tolerance_m = a.blend_tolerance_m;
