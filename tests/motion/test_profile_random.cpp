@@ -130,6 +130,30 @@ TEST(ProfileRandom, WithinLimitsContinuousAndExactAtBothEnds) {
   }
 }
 
+TEST(ProfileRandom, TimeAtInvertsTheArcLength) {
+  std::mt19937_64 rng(606);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int c = 0; c < test::random_cases(2000); ++c) {
+    const RandomInput r = random_input(rng);
+    Profile p;
+    ASSERT_EQ(solve_profile(r.input, p), ProfileStatus::ok);
+    const double t = p.duration_s * unit(rng);
+    const ProfileState state = p.state_at(t);
+    const double back = p.time_at(state.s_m);
+    // s(t) is flat only where v = 0 (at rest), so the time is recovered up to s's rounding over v.
+    const double eps = std::numeric_limits<double>::epsilon();
+    EXPECT_NEAR(p.state_at(back).s_m, state.s_m, 16 * eps * r.input.length_m + 1e-300) << "case " << c;
+    if (state.v_m_s > 1e-6) {
+      EXPECT_NEAR(back, t, 16 * eps * (r.input.length_m / state.v_m_s + p.duration_s)) << "case " << c;
+    }
+  }
+  Profile p;
+  ASSERT_EQ(solve_profile({0.1, 0.0, 0.0, 2.0, 49.03325, 9806.65}, p), ProfileStatus::ok);
+  EXPECT_EQ(p.time_at(0.0), 0.0);
+  EXPECT_EQ(p.time_at(0.1), p.duration_s);
+  EXPECT_NEAR(p.time_at(0.05), 0.5 * p.duration_s, 1e-15);  // symmetric rest-to-rest profile
+}
+
 TEST(ProfileRandom, DerivativesAreConsistentWithFiniteDifferences) {
   std::mt19937_64 rng(77);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
