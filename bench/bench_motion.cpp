@@ -1,20 +1,31 @@
-// Benchmarks of the motion module: one profile solve, sampling, and planning a 100 000-line G-code program.
+// Benchmarks of the motion module: profile solves per case, sampling, planning 100 000-line programs and its share of `run`.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fmt/format.h>
+#include <fstream>
+#include <unistd.h>
 #include <numbers>
 #include <random>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "cam_program.hpp"
+#include "stiffpath/compensation/job.hpp"
+#include "stiffpath/compensation/joint_writer.hpp"
+#include "stiffpath/compliance/model_factory.hpp"
+#include "stiffpath/kinematics/mechanism_spec.hpp"
 #include "stiffpath/motion/profile.hpp"
 #include "stiffpath/motion/speed_change.hpp"
 #include "stiffpath/motion/trajectory_stream.hpp"
 
 namespace {
 using namespace stiffpath::motion;
+namespace compensation = stiffpath::compensation;
+namespace compliance = stiffpath::compliance;
+namespace kinematics = stiffpath::kinematics;
 
 // The solver's cases, each benchmarked on its own inputs (rest-to-rest and moving ends apart).
 enum class ProfileCase { cruise, both_trapezoids, two_triangles, triangle_trapezoid };
@@ -97,7 +108,7 @@ std::string long_program(int lines) {
 
 void BM_PlanProgram100kLines(benchmark::State& state) {
   const std::string program = long_program(100000);
-  std::size_t segments = 0, window = 0;
+  std::size_t segments = 0, window = 0, evaluations = 0;
   for (auto _ : state) {
     std::istringstream in(program);
     GcodeReader reader(in, "long.gcode");
@@ -106,9 +117,11 @@ void BM_PlanProgram100kLines(benchmark::State& state) {
     segments = 0;
     while (auto s = planner.next()) ++segments;
     window = planner.statistics().peak_window;
+    evaluations = planner.statistics().entry_evaluations;
   }
   state.counters["segments"] = static_cast<double>(segments);
   state.counters["peak_window"] = static_cast<double>(window);
+  state.counters["entry_evaluations_per_segment"] = static_cast<double>(evaluations) / static_cast<double>(segments);
   state.counters["ns_per_segment"] =
       benchmark::Counter(static_cast<double>(segments), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
@@ -154,4 +167,81 @@ void BM_EvaluateAtRandomTime(benchmark::State& state) {
 }
 BENCHMARK(BM_EvaluateAtRandomTime);
 
+// Planning's share of `run` on a CAM-like program of 100 000 chords (cam_program.hpp), measured in
+// one process on the same text: 0 reading and blending it (the path stages), 1 also planning it
+// (look-ahead, runs, profiles), 2 also sampling it at 2 kHz; and the whole `run` job with CSV or
+// binary output (process CPU time: the job runs on two threads). The planner's share is
+// (stage 1 − stage 0) / run.
+enum class CamStage { path, plan, sample };
+
+void BM_CamProgram(benchmark::State& state) {
+  const std::string program = stiffpath::bench::cam_program(100000);
+  const auto stage = static_cast<CamStage>(state.range(0));
+  std::size_t segments = 0, runs = 0, evaluations = 0;
+  for (auto _ : state) {
+    std::istringstream in(program);
+    GcodeReader reader(in, "cam.gcode");
+    CornerBlender blender(reader, JunctionRules{}.corner_angle_rad);
+    segments = 0;
+    if (stage == CamStage::path) {
+      while (auto s = blender.next()) ++segments;
+      continue;
+    }
+    Planner planner(blender, MotionLimits{});
+    if (stage == CamStage::plan) {
+      while (auto s = planner.next()) ++segments;
+    } else {
+      Sampler sampler(planner);
+      while (auto s = sampler.next()) benchmark::DoNotOptimize(s->position_m);
+      segments = planner.statistics().segments;
+    }
+    runs = planner.statistics().runs;
+    evaluations = planner.statistics().entry_evaluations;
+  }
+  state.counters["segments"] = static_cast<double>(segments);
+  state.counters["runs"] = static_cast<double>(runs);
+  state.counters["entry_evaluations"] = static_cast<double>(evaluations);
+  state.counters["ns_per_segment"] =
+      benchmark::Counter(static_cast<double>(segments), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_CamProgram)->ArgName("stage")->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+
+void BM_CamRunJob(benchmark::State& state, compensation::OutputFormat format) {
+  const auto dir = std::filesystem::temp_directory_path();
+  const auto job = dir / fmt::format("stiffpath_bench_cam_{}.gcode", ::getpid());
+  const auto out = dir / fmt::format("stiffpath_bench_cam_{}.out", ::getpid());
+  std::ofstream(job) << stiffpath::bench::cam_program(100000);
+  const auto spec = kinematics::load_mechanism("oc-gu");
+  const compensation::Compensator comp(spec, std::shared_ptr<const compliance::Model>(
+                                                 compliance::load_model("thesis-oc").model.release()));
+  for (auto _ : state) {
+    TrajectoryStream stream(job);
+    auto writer = compensation::make_joint_writer(format, out.string(), 2000.0, spec.name);
+    benchmark::DoNotOptimize(compensation::run_job(stream, comp, writer.get(), job.string(), 2000.0).samples);
+    writer.reset();
+    state.PauseTiming();  // deleting the file (waiting for the disk to take its pages) is not part of the job
+    std::filesystem::remove(out);
+    state.ResumeTiming();
+  }
+  std::filesystem::remove(job);
+}
+BENCHMARK_CAPTURE(BM_CamRunJob, csv, compensation::OutputFormat::csv)->MeasureProcessCPUTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_CamRunJob, binary, compensation::OutputFormat::binary)->MeasureProcessCPUTime()->Unit(benchmark::kMillisecond);
+
 }  // namespace
+
+// `bench_motion --write-cam-program FILE` writes the CAM-like program of the benchmarks above, for
+// whole-command runs (stiffpath plan FILE against stiffpath run FILE -o out.csv); otherwise the
+// benchmarks run as usual.
+int main(int argc, char** argv) {
+  if (argc == 3 && std::string(argv[1]) == "--write-cam-program") {
+    std::ofstream out(argv[2]);
+    out << stiffpath::bench::cam_program(100000);
+    return out ? 0 : 1;
+  }
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -15,13 +15,17 @@ std::optional<CornerFillet> corner_fillet(const Vec2& corner_m, const Vec2& in, 
   if (!(tolerance_m > 0.0) || !(max_trim_m > 0.0) || angle <= 0.0 || angle > std::numbers::pi - 1e-6) {
     return std::nullopt;
   }
-  const double half = 0.5 * angle;
+  // Half-angle functions from cos φ = in·out and sin φ = |in × out|, without cancellation:
+  // cos(φ/2) = sqrt((1 + cos φ)/2), tan(φ/2) = sin φ/(1 + cos φ), 1 − cos(φ/2) = sin²(φ/2)/(1 + cos(φ/2)).
+  const double cos_angle = in.dot(out), sin_angle = std::abs(in.x() * out.y() - in.y() * out.x());
+  const double cos_half = std::sqrt(0.5 * (1.0 + cos_angle)), tan_half = sin_angle / (1.0 + cos_angle);
+  const double sin_half = tan_half * cos_half;
   // Distance from the corner to the arc's midpoint is r·(1/cos(φ/2) − 1); solve for the largest r.
-  const double radius_for_tolerance = tolerance_m * std::cos(half) / (1.0 - std::cos(half));
-  const double trim = std::min(radius_for_tolerance * std::tan(half), max_trim_m);
+  const double radius_for_tolerance = tolerance_m * cos_half * (1.0 + cos_half) / (sin_half * sin_half);
+  const double trim = std::min(radius_for_tolerance * tan_half, max_trim_m);
   CornerFillet fillet;
   fillet.trim_m = trim;
-  fillet.radius_m = trim / std::tan(half);
+  fillet.radius_m = trim / tan_half;
   fillet.entry_m = corner_m - trim * in;
   fillet.exit_m = corner_m + trim * out;
   const bool left = in.x() * out.y() - in.y() * out.x() > 0.0;
@@ -47,13 +51,14 @@ std::optional<PathSegment> arc_absorbing_line(const Vec2& line_start_m, const Ve
   const Vec2 from = line_start_m - center, to = fillet.exit_m - center;
   const double sweep = std::atan2(from.x() * to.y() - from.y() * to.x(), from.dot(to));
   if (!(sweep * side > 0.0)) return std::nullopt;
-  PathSegment arc = make_arc(line_start_m, fillet.exit_m, center, sweep);
-  if (!(turn_angle_rad(in, start_tangent(arc)) <= max_kink_rad)) return std::nullopt;
-  return arc;
+  // The start tangent is the radius at the start turned by ±90°; the kink is its angle to `in`.
+  const Vec2 start_direction = side * left_normal(from / from.norm());
+  if (!(turn_angle_rad(in, start_direction) <= max_kink_rad)) return std::nullopt;
+  return make_arc(line_start_m, fillet.exit_m, center, sweep);
 }
 
 CornerBlender::CornerBlender(PathSource& source, double corner_angle_rad)
-    : source_(source), corner_angle_rad_(corner_angle_rad) {}
+    : source_(source), corner_angle_rad_(corner_angle_rad), corner_chord_(2.0 * std::sin(0.5 * corner_angle_rad)) {}
 
 std::optional<PathSegment> CornerBlender::next() {
   while (ready_.empty()) {
@@ -79,7 +84,7 @@ std::optional<PathSegment> CornerBlender::next() {
                            a.mode == JunctionMode::blend && a.laser_on == b.laser_on && a.rapid == b.rapid;
     const Vec2 in = end_tangent(a), out = start_tangent(b);
     std::optional<CornerFillet> fillet;
-    if (blendable && turn_angle_rad(in, out) > corner_angle_rad_) {
+    if (blendable && (out - in).norm() > corner_chord_) {  // |out − in| = 2·sin(φ/2)
       fillet = corner_fillet(a.end_m, in, out, a.blend_tolerance_m, 0.5 * std::min(held_length_m_, b.length_m));
     }
     if (fillet) {

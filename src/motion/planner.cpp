@@ -28,13 +28,14 @@ double Planner::exit_max(std::size_t i) const noexcept {
 void Planner::add(const PathSegment& segment) {
   const SegmentLimits limits = segment_limits(segment, limits_);
   const double offset = open_ ? open_->length_m : 0.0;
-  if (open_ && options_.one_profile_per_run && extend_run(*open_, segment, limits, limits_, options_.junction, options_.runs)) {
+  if (open_ && options_.one_profile_per_run &&
+      extend_run(*open_, previous_, previous_limits_, segment, limits, limits_, options_.junction, options_.runs)) {
     members_.push_back({segment, offset});
   } else {
     const double junction =
         started_ ? junction_speed_limit(previous_, previous_limits_, segment, limits, limits_, options_.junction) : 0.0;
     if (open_) close_run();
-    open_ = start_run(segment, limits);
+    open_ = start_run(segment, limits, options_.runs);
     open_entry_limit_m_s_ = junction;
     members_.push_back({segment, 0.0});
   }
@@ -50,8 +51,8 @@ void Planner::close_run() {
   node.members = run.segments;
   node.length_m = run.length_m;
   node.limits = run.low;
-  node.dwell = run.last.kind == SegmentKind::dwell;
-  node.dwell_s = run.last.dwell_s;
+  node.dwell = run.dwell;
+  node.dwell_s = run.dwell ? members_.back().path.dwell_s : 0.0;
   node.line = members_[members_.size() - run.segments].path.line;
   // The junction rules bound the speed by both adjacent segments' caps; a run keeps the lowest cap
   // of its segments, so the junction also takes the caps of both runs.
@@ -121,6 +122,8 @@ void Planner::begin_release() {
                                          node.line, entry_speed_m_s_, exit, node.length_m, describe(status)));
     }
   }
+  release.cruise_start_s = release.profile.phase_s[0] + release.profile.phase_s[1] + release.profile.phase_s[2];
+  release.cruise_start_m = release.profile.state_at(release.cruise_start_s).s_m;
   release_ = release;
   entry_speed_m_s_ = exit;
   window_.pop_front();
@@ -135,7 +138,14 @@ PlannedSegment Planner::emit() {
   const Member member = members_.front();
   members_.pop_front();
   const bool last = --r.members_left == 0;
-  const double end_s = last ? r.profile.duration_s : r.profile.time_at(member.offset_m + member.path.length_m);
+  // Where the profile has covered the segment's end: in the cruise phase directly, else time_at.
+  const Profile& p = r.profile;
+  const double into_cruise_m = member.offset_m + member.path.length_m - r.cruise_start_m;
+  const bool cruising = !last && p.peak_velocity_m_s > 0.0 && into_cruise_m >= 0.0 &&
+                        into_cruise_m <= p.peak_velocity_m_s * p.phase_s[3];
+  const double end_s = last        ? p.duration_s
+                       : cruising ? std::min(r.cruise_start_s + into_cruise_m / p.peak_velocity_m_s, p.duration_s)
+                                  : p.time_at(member.offset_m + member.path.length_m);
   PlannedSegment planned;
   planned.path = member.path;
   planned.limits = r.limits;
@@ -145,7 +155,7 @@ PlannedSegment Planner::emit() {
   planned.profile_offset_s = r.profile_time_s;
   planned.profile_offset_m = member.offset_m;
   planned.entry_speed_m_s = r.speed_m_s;
-  planned.exit_speed_m_s = last ? r.profile.end_velocity_m_s : r.profile.state_at(end_s).v_m_s;
+  planned.exit_speed_m_s = last ? p.end_velocity_m_s : cruising ? p.peak_velocity_m_s : p.state_at(end_s).v_m_s;
   planned.index = statistics_.segments;
   clock_s_ += planned.duration_s;
   r.profile_time_s = end_s;

@@ -7,21 +7,30 @@
 
 namespace stiffpath::motion {
 
-Run start_run(const PathSegment& segment, const SegmentLimits& limits) noexcept {
-  return Run{limits, limits, segment.length_m, 1, segment, limits};
+namespace {
+
+double closing_length(const SegmentLimits& low, const RunRules& rules) noexcept {
+  if (!(low.max_velocity_m_s > 0.0)) return 0.0;
+  return rules.closing_length_factor *
+         speed_change(0.0, low.max_velocity_m_s, low.max_acceleration_m_s2, low.max_jerk_m_s3).distance_m;
 }
 
-bool extend_run(Run& run, const PathSegment& next, const SegmentLimits& next_limits, const MotionLimits& limits,
-                const JunctionRules& junction, const RunRules& rules) noexcept {
-  if (run.last.kind == SegmentKind::dwell || next.kind == SegmentKind::dwell) return false;
+}  // namespace
+
+Run start_run(const PathSegment& segment, const SegmentLimits& limits, const RunRules& rules) noexcept {
+  return Run{limits, limits, segment.length_m, 1, segment.kind == SegmentKind::dwell, closing_length(limits, rules)};
+}
+
+bool extend_run(Run& run, const PathSegment& last, const SegmentLimits& last_limits, const PathSegment& next,
+                const SegmentLimits& next_limits, const MotionLimits& limits, const JunctionRules& junction,
+                const RunRules& rules) noexcept {
+  if (run.dwell || last.kind == SegmentKind::dwell || next.kind == SegmentKind::dwell) return false;
   if (run.segments >= rules.max_segments) return false;
-  const SpeedChange from_rest =
-      speed_change(0.0, run.low.max_velocity_m_s, run.low.max_acceleration_m_s2, run.low.max_jerk_m_s3);
-  if (run.length_m >= rules.closing_length_factor * from_rest.distance_m) return false;
+  if (run.length_m >= run.closing_length_m) return false;
 
   const double acceleration = std::min(run.low.max_acceleration_m_s2, next_limits.max_acceleration_m_s2);
   const double junction_speed =
-      tangent_junction_speed_limit(run.last, run.last_limits, next, next_limits, limits, junction, acceleration);
+      tangent_junction_speed_limit(last, last_limits, next, next_limits, limits, junction, acceleration);
   if (!(junction_speed > 0.0)) return false;
   const SegmentLimits joining{std::min(next_limits.max_velocity_m_s, junction_speed), next_limits.max_acceleration_m_s2,
                               next_limits.max_jerk_m_s3};
@@ -36,12 +45,14 @@ bool extend_run(Run& run, const PathSegment& next, const SegmentLimits& next_lim
       low.max_jerk_m_s3 < rules.tangential_band * high.max_jerk_m_s3) {
     return false;
   }
+  if (low.max_velocity_m_s != run.low.max_velocity_m_s || low.max_acceleration_m_s2 != run.low.max_acceleration_m_s2 ||
+      low.max_jerk_m_s3 != run.low.max_jerk_m_s3) {
+    run.closing_length_m = closing_length(low, rules);
+  }
   run.low = low;
   run.high = high;
   run.length_m += next.length_m;
   ++run.segments;
-  run.last = next;
-  run.last_limits = next_limits;
   return true;
 }
 

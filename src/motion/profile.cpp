@@ -70,6 +70,15 @@ ProfileState Profile::state_at(double t_s) const noexcept {
 double Profile::time_at(double s_m) const noexcept {
   if (!(s_m > 0.0)) return 0.0;
   if (s_m >= length_m) return duration_s;
+  // In the cruise phase s is linear in t: the time follows directly.
+  const double cruise_start_s = phase_s[0] + phase_s[1] + phase_s[2];
+  if (phase_s[3] > 0.0 && peak_velocity_m_s > 0.0) {
+    const double cruise_start_m = state_at(cruise_start_s).s_m;
+    const double into_m = s_m - cruise_start_m;
+    if (into_m >= 0.0 && into_m <= peak_velocity_m_s * phase_s[3]) {
+      return std::min(cruise_start_s + into_m / peak_velocity_m_s, duration_s);
+    }
+  }
   double lo = 0.0, hi = duration_s, t = duration_s * (s_m / length_m);
   double step = hi - lo, previous_step = step;
   for (int iteration = 0; iteration < 200; ++iteration) {

@@ -83,7 +83,8 @@ std::vector<ReferenceRun> reference_runs(const std::string& gcode, const PlanOpt
   while (auto s = blender.next()) {
     if (s->kind != SegmentKind::dwell && !(s->length_m > 0.0)) continue;
     const SegmentLimits lim = segment_limits(*s, options.limits);
-    if (open && extend_run(*open, *s, lim, options.limits, options.planner.junction, options.planner.runs)) {
+    if (open && extend_run(*open, previous, previous_limits, *s, lim, options.limits, options.planner.junction,
+                           options.planner.runs)) {
       ++runs.back().segments;
     } else {
       if (open) {
@@ -96,7 +97,7 @@ std::vector<ReferenceRun> reference_runs(const std::string& gcode, const PlanOpt
                                            : junction_speed_limit(previous, previous_limits, *s, lim, options.limits,
                                                                   options.planner.junction);
       runs.push_back({0.0, junction, lim, s->kind == SegmentKind::dwell, 1});
-      open = start_run(*s, lim);
+      open = start_run(*s, lim, options.planner.runs);
     }
     previous = *s;
     previous_limits = lim;

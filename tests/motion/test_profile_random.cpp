@@ -154,6 +154,23 @@ TEST(ProfileRandom, TimeAtInvertsTheArcLength) {
   EXPECT_NEAR(p.time_at(0.05), 0.5 * p.duration_s, 1e-15);  // symmetric rest-to-rest profile
 }
 
+TEST(ProfileRandom, ReachableSpeedInvertsTheDistanceOverRandomInputs) {
+  // As the hand-picked grid in test_profile.cpp: the distances of the speeds a few ulps below and
+  // above the answer bracket the length, over random speeds, lengths (1 nm … 1 m) and limits.
+  std::mt19937_64 rng(2718);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double eps = 4.0 * std::numeric_limits<double>::epsilon();
+  for (int c = 0; c < test::random_cases(20000); ++c) {
+    const double a = 1.0 + 60.0 * unit(rng), j = 50.0 * std::pow(400.0, unit(rng));
+    const double v0 = unit(rng) < 0.2 ? 0.0 : 3.0 * unit(rng), L = std::pow(10.0, -9.0 + 9.0 * unit(rng));
+    const double v = reachable_speed(L, v0, a, j);
+    ASSERT_GE(v, v0) << "case " << c;
+    const double below = std::max(v0, v * (1.0 - eps) - 1e-300), above = v * (1.0 + eps) + 1e-300;
+    ASSERT_LE(speed_change(v0, below, a, j).distance_m, L) << "case " << c;
+    ASSERT_GE(speed_change(v0, above, a, j).distance_m, L) << "case " << c;
+  }
+}
+
 TEST(ProfileRandom, DerivativesAreConsistentWithFiniteDifferences) {
   std::mt19937_64 rng(77);
   std::uniform_real_distribution<double> unit(0.0, 1.0);

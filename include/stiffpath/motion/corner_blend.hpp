@@ -47,6 +47,7 @@ class CornerBlender final : public PathSource {
  private:
   PathSource& source_;
   double corner_angle_rad_;
+  double corner_chord_;                // 2·sin(corner_angle_rad/2): |out − in| of a turn by that angle
   std::optional<PathSegment> held_;    // the last segment, whose end may still be trimmed
   double held_length_m_ = 0.0;         // its programmed length
   std::deque<PathSegment> ready_;

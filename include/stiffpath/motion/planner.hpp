@@ -79,6 +79,8 @@ class Planner final : public SegmentSource {
     std::size_t members_left = 0;
     double profile_time_s = 0.0;  // where the next segment starts on the profile
     double speed_m_s = 0.0;       // and its speed there
+    double cruise_start_s = 0.0;  // the cruise phase: where it starts in time and arc length
+    double cruise_start_m = 0.0;
   };
   void add(const PathSegment& segment);
   void close_run();

@@ -27,24 +27,26 @@ struct RunRules {
   double closing_length_factor = 4.0;
 };
 
-//! A run being built: the range of its segments' limits, its length and its last segment.
+//! A run being built: the range of its segments' limits and its length.
 struct Run {
   SegmentLimits low;    //!< the lowest speed cap, tangential acceleration and jerk: the run's limits
   SegmentLimits high;   //!< the highest of each
   double length_m = 0.0;
   std::size_t segments = 0;
-  PathSegment last;
-  SegmentLimits last_limits;
+  bool dwell = false;   //!< a dwell, which is always a run of its own
+  double closing_length_m = 0.0;  //!< RunRules::closing_length_factor × the change from rest to low's cap
 };
 
 //! A run of one segment.
-Run start_run(const PathSegment& segment, const SegmentLimits& limits) noexcept;
+Run start_run(const PathSegment& segment, const SegmentLimits& limits, const RunRules& rules = {}) noexcept;
 
-//! Adds `next` to `run` and returns true when it may share the run's profile: no dwell on either
-//! side, the run not closed (RunRules), a tangent junction (tangent_junction_speed_limit > 0 with
-//! the run's tangential acceleration), and next's cap (lowered to that junction's speed) and
-//! tangential limits within the band of the run's. Otherwise leaves `run` as it was.
-bool extend_run(Run& run, const PathSegment& next, const SegmentLimits& next_limits, const MotionLimits& limits,
-                const JunctionRules& junction, const RunRules& rules) noexcept;
+//! Adds `next` to `run`, whose last segment is `last`, and returns true when it may share the run's
+//! profile: no dwell on either side, the run not closed (RunRules), a tangent junction
+//! (tangent_junction_speed_limit > 0 with the run's tangential acceleration), and next's cap
+//! (lowered to that junction's speed) and tangential limits within the band of the run's.
+//! Otherwise leaves `run` as it was.
+bool extend_run(Run& run, const PathSegment& last, const SegmentLimits& last_limits, const PathSegment& next,
+                const SegmentLimits& next_limits, const MotionLimits& limits, const JunctionRules& junction,
+                const RunRules& rules) noexcept;
 
 }  // namespace stiffpath::motion
