@@ -7,31 +7,17 @@
 #include <vector>
 
 #include "stiffpath/compensation/compensator.hpp"
+#include "task_samples.hpp"
 #include "stiffpath/compliance/model_factory.hpp"
+#include "stiffpath/compliance/physical_model.hpp"
 
 namespace {
 using namespace stiffpath;
-
-// One hour would be 7.2 M samples; 400 000 samples (200 s at 2 kHz) keep the run short.
-std::vector<compensation::TaskSample> job_samples() {
-  std::vector<compensation::TaskSample> out;
-  const double w = 2 * M_PI * 2.0;
-  for (int k = 0; k < 400000; ++k) {
-    const double t = k / 2000.0;
-    compensation::TaskSample s;
-    s.t_s = t;
-    s.position_m = {0.222 + 0.045 * std::sin(w * t), 0.07 * std::sin(2 * w * t)};
-    s.velocity_m_s = {0.045 * w * std::cos(w * t), 0.14 * w * std::cos(2 * w * t)};
-    s.acceleration_m_s2 = {-0.045 * w * w * std::sin(w * t), -0.28 * w * w * std::sin(2 * w * t)};
-    s.jerk_m_s3 = {-0.045 * w * w * w * std::cos(w * t), -0.56 * w * w * w * std::cos(2 * w * t)};
-    out.push_back(s);
-  }
-  return out;
-}
+using stiffpath::bench::job_samples;
 
 void BM_StepLatency(benchmark::State& state, const char* model_name) {
   const auto samples = job_samples();
-  const compensation::Compensator comp(kinematics::load_mechanism("oc-gu"),
+  const compensation::Compensator comp(kinematics::load_robot("oc-gu"),
                                        std::shared_ptr<const compliance::Model>(compliance::load_model(model_name).model.release()));
   std::vector<double> ns(samples.size());
   using clock = std::chrono::steady_clock;
@@ -59,7 +45,7 @@ BENCHMARK_CAPTURE(BM_StepLatency, physical, "thesis-oc-physical")->Iterations(1)
 
 void BM_StepThroughput(benchmark::State& state) {
   const auto samples = job_samples();
-  const compensation::Compensator comp(kinematics::load_mechanism("oc-gu"),
+  const compensation::Compensator comp(kinematics::load_robot("oc-gu"),
                                        std::shared_ptr<const compliance::Model>(compliance::load_model("thesis-oc").model.release()));
   std::size_t k = 0;
   for (auto _ : state) {
@@ -68,107 +54,31 @@ void BM_StepThroughput(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_StepThroughput);
-}  // namespace
 
-// Whole-job throughput of `run`: plan → compensate → write, on a generated marking job (targets:
-// ≥ 2 M samples/s with CSV output, ≥ 10 M samples/s with binary output). Wall-clock time: the job
-// may use more than one thread.
-#include <filesystem>
-#include <fstream>
-#include <unistd.h>
-
-#include "stiffpath/compensation/job.hpp"
-#include "stiffpath/motion/trajectory_stream.hpp"
-
-namespace {
-std::string marking_job(int lines) {
-  const auto path = std::filesystem::temp_directory_path() / ("stiffpath_bench_job_" + std::to_string(::getpid()) + "_" +
-                                                              std::to_string(lines) + ".gcode");
-  std::ofstream out(path);
-  out << "G21 G90 G64 P0.01\nG0 X180 Y-70\nM3 S500\n";
-  for (int i = 0; i < lines; ++i) {
-    const double y = -70.0 + (i % 140);
-    out << "G1 X" << (i % 2 ? 180 : 265) << " Y" << y << " F60000\n";
-  }
-  out << "M5\nM2\n";
-  return path.string();
-}
-
-void BM_RunJob(benchmark::State& state, compensation::OutputFormat format) {
-  const std::string job = marking_job(static_cast<int>(state.range(0)));
-  const auto out = std::filesystem::temp_directory_path() / ("stiffpath_bench_out_" + std::to_string(::getpid()));
-  const auto spec = kinematics::load_mechanism("oc-gu");
-  const compensation::Compensator comp(spec, std::shared_ptr<const compliance::Model>(
-                                                 compliance::load_model("thesis-oc").model.release()));
-  std::uint64_t samples = 0;
+// The step on a general five-bar (the asymmetric robot of examples/robots/): general inverse
+// kinematics and J̇, and the physical model with U from the robot's own geometry.
+void BM_StepThroughputGeneralRobot(benchmark::State& state) {
+  kinematics::Robot robot = kinematics::load_robot("oc-gu");
+  robot.geometry.actuator_m = {kinematics::Vec2(-0.04, 0.0), kinematics::Vec2(0.04, 0.0)};
+  robot.geometry.proximal_m = {0.120, 0.130};
+  robot.geometry.distal_m = {0.180, 0.170};
+  robot.joints[0].min_rad = -3.0;
+  robot.joints[0].max_rad = 3.0;
+  robot.joints[1].min_rad = -3.0;
+  robot.joints[1].max_rad = 3.0;
+  auto model = std::make_shared<compliance::PhysicalModel>(
+      robot.geometry, compliance::GridBounds{-0.06, 0.06, 0.17, 0.25}, 1,
+      std::vector<std::array<double, 3>>{{1.0e-6, 0.1e-6, 1.2e-6}, {0.2e-6, 0.0, -0.1e-6}, {0.0, 0.05e-6, 0.1e-6}},
+      nlohmann::json::object());
+  const compensation::Compensator comp(robot, model, {1.0, true, false});
+  // The thesis samples moved into this robot's workspace (centre (0, 210) mm).
+  auto samples = job_samples();
+  for (auto& s : samples) s.position_m += kinematics::Vec2(-0.222, 0.210);
+  std::size_t k = 0;
   for (auto _ : state) {
-    motion::TrajectoryStream stream(job);
-    auto writer = compensation::make_joint_writer(format, out.string(), 2000.0, spec.name);
-    samples += compensation::run_job(stream, comp, writer.get(), job, 2000.0).samples;
-    // A job writes a new file: deleting the last one (which waits for the disk to take its pages)
-    // is not part of it.
-    state.PauseTiming();
-    std::filesystem::remove(out);
-    state.ResumeTiming();
+    benchmark::DoNotOptimize(comp.step(samples[k]));
+    if (++k == samples.size()) k = 0;
   }
-  state.counters["samples_per_s"] = benchmark::Counter(static_cast<double>(samples), benchmark::Counter::kIsRate);
-  state.counters["samples"] = static_cast<double>(samples) / static_cast<double>(state.iterations());
-  std::filesystem::remove(job);
 }
-BENCHMARK_CAPTURE(BM_RunJob, csv, compensation::OutputFormat::csv)->Arg(2000)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(BM_RunJob, binary, compensation::OutputFormat::binary)->Arg(2000)->Unit(benchmark::kMillisecond)->UseRealTime();
-
-// Where the job's time goes: the same job without output (plan + compensate only) …
-void BM_RunJobNoOutput(benchmark::State& state) {
-  const std::string job = marking_job(static_cast<int>(state.range(0)));
-  const compensation::Compensator comp(kinematics::load_mechanism("oc-gu"), std::shared_ptr<const compliance::Model>(
-                                                 compliance::load_model("thesis-oc").model.release()));
-  std::uint64_t samples = 0;
-  for (auto _ : state) {
-    motion::TrajectoryStream stream(job);
-    samples += compensation::run_job(stream, comp, nullptr, job, 2000.0).samples;
-  }
-  state.counters["samples_per_s"] = benchmark::Counter(static_cast<double>(samples), benchmark::Counter::kIsRate);
-  std::filesystem::remove(job);
-}
-BENCHMARK(BM_RunJobNoOutput)->Arg(2000)->Unit(benchmark::kMillisecond)->UseRealTime();
-
-// … only the planning (G-code → 2 kHz task samples, the part that cannot be shared between threads) …
-void BM_PlanJobOnly(benchmark::State& state) {
-  const std::string job = marking_job(static_cast<int>(state.range(0)));
-  std::uint64_t samples = 0;
-  for (auto _ : state) {
-    motion::TrajectoryStream stream(job);
-    while (const auto s = stream.next()) {
-      benchmark::DoNotOptimize(compensation::to_task_sample(*s));
-      ++samples;
-    }
-  }
-  state.counters["samples_per_s"] = benchmark::Counter(static_cast<double>(samples), benchmark::Counter::kIsRate);
-  std::filesystem::remove(job);
-}
-BENCHMARK(BM_PlanJobOnly)->Arg(2000)->Unit(benchmark::kMillisecond)->UseRealTime();
-
-// … and only the writer: 448 000 ready commands (the job's length) encoded and written to a file.
-void BM_WriteJoints(benchmark::State& state, compensation::OutputFormat format) {
-  const auto samples = job_samples();
-  const compensation::Compensator comp(kinematics::load_mechanism("oc-gu"), std::shared_ptr<const compliance::Model>(
-                                                 compliance::load_model("thesis-oc").model.release()));
-  std::vector<compensation::JointCommand> commands;
-  for (std::size_t k = 0; k < 448000; ++k) commands.push_back(comp.step(samples[k % samples.size()]));
-  const auto out = std::filesystem::temp_directory_path() / ("stiffpath_bench_write_" + std::to_string(::getpid()));
-  for (auto _ : state) {
-    auto writer = compensation::make_joint_writer(format, out.string(), 2000.0, "oc-gu");
-    for (const auto& c : commands) writer->write(c);
-    writer->finish();
-    state.PauseTiming();
-    std::filesystem::remove(out);
-    state.ResumeTiming();
-  }
-  state.counters["samples_per_s"] = benchmark::Counter(static_cast<double>(commands.size() * state.iterations()),
-                                                       benchmark::Counter::kIsRate);
-  std::filesystem::remove(out);
-}
-BENCHMARK_CAPTURE(BM_WriteJoints, csv, compensation::OutputFormat::csv)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(BM_WriteJoints, binary, compensation::OutputFormat::binary)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_StepThroughputGeneralRobot);
 }  // namespace

@@ -7,6 +7,7 @@
 #include "stiffpath/compliance/model_factory.hpp"
 #include "stiffpath/compliance/point_fit.hpp"
 #include "stiffpath/compliance/cross_validation.hpp"
+#include "stiffpath/compliance/physical_model.hpp"
 #include "stiffpath/measurement/displacement_table.hpp"
 
 namespace {
@@ -45,16 +46,46 @@ BENCHMARK_CAPTURE(BM_Predict, symmetric, "thesis-oc-symmetric");
 BENCHMARK_CAPTURE(BM_Predict, physical, "thesis-oc-physical");
 BENCHMARK_CAPTURE(BM_Predict, physical_order2, "thesis-oc-physical-2");
 
+// The physical model of a general (asymmetric) five-bar: U from the general inverse kinematics.
+void BM_PredictPhysicalGeneralGeometry(benchmark::State& state) {
+  stiffpath::kinematics::FiveBarGeometry g;
+  g.actuator_m = {Vec2(-0.04, 0.0), Vec2(0.04, 0.0)};
+  g.proximal_m = {0.120, 0.130};
+  g.distal_m = {0.180, 0.170};
+  const stiffpath::compliance::GridBounds region{-0.06, 0.06, 0.17, 0.25};
+  stiffpath::compliance::PhysicalModel model(g, region, 1, {{1.0e-6, 0.1e-6, 1.2e-6}, {0.2e-6, 0.0, -0.1e-6}, {0.0, 0.05e-6, 0.1e-6}},
+                                             nlohmann::json::object());
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> ux(-0.06, 0.06), uy(0.17, 0.25), uf(-200.0, 200.0);
+  std::vector<Vec2> p(1024), f(1024);
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    p[k] = {ux(rng), uy(rng)};
+    f[k] = {uf(rng), uf(rng)};
+  }
+  std::size_t k = 0;
+  for (auto _ : state) {
+    k = (k + 1) & 1023;
+    benchmark::DoNotOptimize(model.predict(p[k], f[k]));
+  }
+}
+BENCHMARK(BM_PredictPhysicalGeneralGeometry);
+
 void BM_FitPhysical(benchmark::State& state) {
-  const auto table = stiffpath::measurement::load_displacement_table("thesis");
-  for (auto _ : state) benchmark::DoNotOptimize(stiffpath::compliance::fit_model(table, "OC", "physical"));
+  const auto robot = stiffpath::kinematics::load_robot("oc-gu");
+  const auto table = stiffpath::measurement::load_displacement_table(robot.compliance.table);
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(stiffpath::compliance::fit_model(table, "OC", "physical",
+                                                              stiffpath::compliance::ForceConvention::measured, robot));
+  }
 }
 BENCHMARK(BM_FitPhysical)->Unit(benchmark::kMillisecond);
 
 void BM_CrossValidation(benchmark::State& state) {
-  const auto table = stiffpath::measurement::load_displacement_table("thesis").filter("OC");
+  const auto table =
+      stiffpath::measurement::load_displacement_table(stiffpath::measurement::thesis_dataset()).filter("OC");
   const auto points = stiffpath::compliance::group_by_point(table, stiffpath::compliance::ForceConvention::measured);
-  for (auto _ : state) benchmark::DoNotOptimize(stiffpath::compliance::cross_validate(points, 0.150, "thesis"));
+  const auto geometry = stiffpath::kinematics::FiveBarGeometry::thesis(0.150);
+  for (auto _ : state) benchmark::DoNotOptimize(stiffpath::compliance::cross_validate(points, geometry, "thesis"));
 }
 BENCHMARK(BM_CrossValidation)->Unit(benchmark::kMillisecond);
 }  // namespace

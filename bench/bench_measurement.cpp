@@ -15,7 +15,7 @@ using namespace stiffpath::measurement;
 Campaign make_campaign(int readings_per_step) {
   VirtualCampaignOptions o;
   o.readings_per_step = readings_per_step;
-  return simulate_campaign(linear_truth(load_displacement_table("thesis").filter("OC")), o);
+  return simulate_campaign(linear_truth(load_displacement_table(stiffpath::measurement::thesis_dataset()).filter("OC")), o);
 }
 
 // In-memory processing (eq. 2.3, tilt, averaging); items = CMM readings (rows of the raw file).
@@ -39,7 +39,7 @@ BENCHMARK(BM_LoadAndProcessCampaign)->Arg(1)->Arg(10)->Unit(benchmark::kMicrosec
 
 // `stiffpath data check thesis` without the printing; items = table rows.
 void BM_DataCheckThesis(benchmark::State& state) {
-  const DisplacementTable t = load_displacement_table("thesis");
+  const DisplacementTable t = load_displacement_table(stiffpath::measurement::thesis_dataset());
   for (auto _ : state) benchmark::DoNotOptimize(check_displacements(t));
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(t.rows.size()));
 }

@@ -5,7 +5,7 @@
 #include <numbers>
 #include <vector>
 
-#include "stiffpath/kinematics/mechanism_spec.hpp"
+#include "stiffpath/kinematics/robot.hpp"
 #include "stiffpath/simulation/experiment.hpp"
 
 namespace {
@@ -13,15 +13,15 @@ using namespace stiffpath;
 
 // One second of a 2 kHz joint stream: a 2 Hz Lissajous figure over the workspace (no compensation needed:
 // the plant's cost does not depend on what the joints do).
-std::vector<compensation::JointRecord> one_second() {
-  const auto robot = kinematics::load_mechanism("oc-gu").five_bar();
-  std::vector<compensation::JointRecord> out;
+std::vector<compensation::JointCommand> one_second() {
+  const auto robot = kinematics::load_robot("oc-gu").five_bar();
+  std::vector<compensation::JointCommand> out;
   const double w = 2 * std::numbers::pi * 2.0;
   for (int k = 0; k <= 2000; ++k) {
     const double t = k / 2000.0;
     const kinematics::Vec2 p(0.222 + 0.045 * std::sin(w * t), 0.07 * std::sin(2 * w * t));
     const kinematics::Vec2 v(0.045 * w * std::cos(w * t), 0.14 * w * std::cos(2 * w * t));
-    compensation::JointRecord r;
+    compensation::JointCommand r;
     r.t_s = t;
     r.q_rad = robot.inverse(p);
     r.qd_rad_s = robot.jacobian(r.q_rad).inverse() * v;
@@ -34,14 +34,14 @@ std::vector<compensation::JointRecord> one_second() {
 
 void BM_SimulatedSecond(benchmark::State& state) {
   const auto records = one_second();
-  const auto spec = kinematics::load_mechanism("oc-gu");
-  const auto truth = simulation::make_true_compliance("OC");
+  const auto spec = kinematics::load_robot("oc-gu");
+  const auto truth = simulation::make_true_compliance(spec);
   simulation::SimulationOptions options;
   options.settle_s = 0.0;
   for (auto _ : state) {
     std::size_t i = 0;
     const auto result = simulation::simulate(
-        [&]() -> std::optional<compensation::JointRecord> {
+        [&]() -> std::optional<compensation::JointCommand> {
           if (i == records.size()) return std::nullopt;
           return records[i++];
         },

@@ -1,14 +1,23 @@
 #!/usr/bin/env bash
 # Installs every Debian package that stiffpath's build, tests, benchmarks and tools need (idempotent).
+# Optional groups, installed only when named: `bootstrap.sh linuxcnc` adds LinuxCNC for its integration tests.
 set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libcli11-dev nlohmann-json3-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libopencv-dev gnuplot-nox
+  libopencv-dev libpng-dev gnuplot-nox
   python3 python3-dev pybind11-dev python3-numpy
 )
+for group in "$@"; do
+  case "$group" in
+    # LinuxCNC 2.9 in user space (no real-time kernel needed for the tests): halcompile, Makefile.modinc, halrun,
+    # halsampler/halstreamer and the linuxcnc Python module. About 87 packages, 69 MB of archives.
+    linuxcnc) packages+=(linuxcnc-uspace linuxcnc-uspace-dev) ;;
+    *) echo "bootstrap: unknown package group '$group' (known: linuxcnc)" >&2; exit 2 ;;
+  esac
+done
 
 missing=()
 for p in "${packages[@]}"; do

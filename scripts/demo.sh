@@ -6,7 +6,7 @@ out=${DEMO_OUTPUT_DIR:-build/demo}
 mkdir -p "$out"
 
 echo "== stiffpath $("$stiffpath" --version | cut -d' ' -f2): the thesis's robot (oc-gu) and its measured compliance"
-"$stiffpath" mechanism show oc-gu
+"$stiffpath" robot show oc-gu
 echo
 echo "== the main job (fig. 4.3): the thesis's triangle at 5 g, G-code -> joint commands at 2 kHz"
 echo "-- without compensation"
@@ -28,6 +28,6 @@ echo "-- with compensation"
 "$stiffpath" simulate "$out/triangle_compensated.csv" --sides 3
 echo
 echo "== which compliance model to trust: leave-one-out cross-validation on the thesis's OC data"
-"$stiffpath" cv thesis --mechanism oc
+"$stiffpath" cv --robot oc-gu
 echo
 echo "joint trajectories: $out/triangle_plain.csv, $out/triangle_compensated.csv"

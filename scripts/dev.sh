@@ -6,7 +6,7 @@ cd "$(dirname "$0")/.."
 what=${1:-demo}
 jobs=$(nproc 2>/dev/null || echo 2)
 
-bash scripts/bootstrap.sh
+if [ "$what" = linuxcnc ]; then bash scripts/bootstrap.sh linuxcnc; else bash scripts/bootstrap.sh; fi
 
 build() {  # build <preset>
   cmake --preset "$1" >/dev/null
@@ -30,8 +30,19 @@ case "$what" in
     build release
     for b in build/release/bench/bench_*; do "$b" --benchmark_repetitions=5 --benchmark_report_aggregates_only=true; done
     ;;
+  linuxcnc)
+    # The C interface and the LinuxCNC integration: modules built and copied into LinuxCNC's module
+    # directory (root), then the tests labelled c_api and linuxcnc (LinuxCNC runs headless, see docs/linuxcnc.md).
+    cmake --preset dev -DSTIFFPATH_LINUXCNC=ON >/dev/null
+    cmake --build --preset dev -j "$jobs" --target stiffpath_cli stiffpath_halstream stiffpath_linuxcnc_modules \
+      check_gcode_record test_stiffpath_c test_c_api
+    sudo_cmd=()
+    [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+    "${sudo_cmd[@]}" cmake --build --preset dev --target stiffpath_linuxcnc_install_modules
+    ctest --preset dev -L 'c_api|linuxcnc'
+    ;;
   *)
-    echo "usage: scripts/dev.sh demo|test|asan|bench" >&2
+    echo "usage: scripts/dev.sh demo|test|asan|bench|linuxcnc" >&2
     exit 2
     ;;
 esac

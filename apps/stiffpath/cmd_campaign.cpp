@@ -5,17 +5,17 @@
 #include <set>
 
 #include "commands.hpp"
+#include "robot_flags.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/core/units.hpp"
-#include "stiffpath/kinematics/mechanism_spec.hpp"
 #include "stiffpath/measurement/virtual_campaign.hpp"
 
 namespace stiffpath::cli {
 
 namespace {
 struct SimulateOptions {
-  std::string mechanism = "oc-gu";
-  std::string truth = "thesis";
+  std::string robot;
+  std::string truth;  // default: the robot's table
   bool linearize = false;
   int readings = 1;
   double noise_sigma_um = 11.5;
@@ -27,16 +27,32 @@ struct SimulateOptions {
 };
 
 void run(const SimulateOptions& o) {
-  const auto spec = kinematics::load_mechanism(o.mechanism);
-  auto table = measurement::load_displacement_table(o.truth);
-  if (table.mechanisms().size() > 1) table = table.filter(spec.build);
-  if (table.rows.empty()) {
-    throw Error(SourceLocation{o.truth}, "no rows of build " + spec.build + " (from --mechanism " + o.mechanism + ")");
+  const auto robot = load_robot_flag(o.robot);
+  if (!robot.replica) {
+    throw Error(SourceLocation{robot.file.label()},
+                fmt::format("robot '{}' has no measurement replica (measurement.UG_mm, UL_mm): a CMM campaign reads U "
+                            "and L on it",
+                            robot.name));
   }
-  // The thesis tables have gaps (garbled cells): their truth is the per-point linear fit.
-  if (o.linearize || o.truth == "thesis") table = measurement::linear_truth(table);
+  if (o.truth.empty() && robot.compliance.table.empty()) {
+    throw Error(fmt::format("robot '{}' names no displacement table: give the truth with --truth", robot.name));
+  }
+  auto table = measurement::load_displacement_table(o.truth.empty() ? robot.compliance.table : table_ref(o.truth));
+  if (table.mechanisms().size() > 1) table = table.filter(robot.compliance.rows);
+  if (table.rows.empty()) {
+    throw Error(SourceLocation{table.source},
+                "no rows with mechanism '" + robot.compliance.rows + "' (robot " + robot.name + ")");
+  }
+  // A table with gaps (the thesis's garbled cells) is replaced by its per-point linear fit; quantities
+  // the table lacks entirely (dz, rx, ry are optional) become zero.
+  const bool gaps = measurement::has_gaps(table);
+  if (o.linearize || gaps) {
+    table = measurement::linear_truth(table);
+  } else {
+    table = measurement::zero_absent_quantities(table);
+  }
   measurement::VirtualCampaignOptions v;
-  v.geometry = {spec.ug_m, spec.ul_m};
+  v.geometry = {robot.replica->ug_m, robot.replica->ul_m};
   v.readings_per_step = o.readings;
   v.noise_sigma_m = units::um_to_m(o.noise_sigma_um);
   v.seed = o.seed;
@@ -47,8 +63,9 @@ void run(const SimulateOptions& o) {
   if (o.json) {
     print_json({{"output", o.output},
                 {"truth_output", o.truth_output},
-                {"truth", o.truth},
-                {"build", spec.build},
+                {"truth", table.source},
+                {"robot", robot.name},
+                {"robot_rows", robot.compliance.rows},
                 {"readings", campaign.readings.size()},
                 {"readings_per_step", o.readings},
                 {"noise_sigma_um", o.noise_sigma_um},
@@ -57,9 +74,9 @@ void run(const SimulateOptions& o) {
   }
   std::set<std::pair<std::string, int>> series;
   for (const auto& r : table.rows) series.emplace(r.point, static_cast<int>(r.direction));
-  fmt::print("{} readings of {} {} series (truth: {}{}), noise sigma {:.1f} um, seed {}\nwrote {}\n",
-             campaign.readings.size(), spec.build, series.size(), o.truth,
-             o.linearize || o.truth == "thesis" ? ", linear fit per point" : "", o.noise_sigma_um, o.seed, o.output);
+  fmt::print("{} readings of robot {}: {} series (truth: {}{}), noise sigma {:.1f} um, seed {}\nwrote {}\n",
+             campaign.readings.size(), robot.name, series.size(), table.source,
+             o.linearize || gaps ? ", linear fit per point" : "", o.noise_sigma_um, o.seed, o.output);
 }
 }  // namespace
 
@@ -68,9 +85,9 @@ void add_campaign_command(CLI::App& app) {
   campaign->require_subcommand(1);
   auto opts = std::make_shared<SimulateOptions>();
   auto* sim = campaign->add_subcommand("simulate", "Write a virtual campaign: truth displacements -> noisy U, L readings");
-  sim->add_option("--mechanism", opts->mechanism, "Preset or JSON file (|UG|, |UL|, build)")->capture_default_str();
-  sim->add_option("--truth", opts->truth, "Displacement table giving the true displacements, or 'thesis'")
-      ->capture_default_str();
+  add_robot_flag(sim, opts->robot);
+  sim->add_option("--truth", opts->truth, "Displacement table giving the true displacements, or 'thesis' "
+                                          "(default: the robot's own table)");
   sim->add_flag("--linearize", opts->linearize, "Replace the truth by its per-point linear fit (fills gaps)");
   sim->add_option("--readings", opts->readings, "Readings per load step")->capture_default_str();
   sim->add_option("--noise-sigma-um", opts->noise_sigma_um, "Sigma of each U, L coordinate (um); 11.5 = +-23 um at 2 sigma")

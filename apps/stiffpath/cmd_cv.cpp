@@ -1,8 +1,9 @@
-// `stiffpath cv`: leave-one-out cross-validation of every compliance model on one mechanism's data.
+// `stiffpath cv`: leave-one-out cross-validation of every compliance model that can run on a robot's data.
 #include <fmt/format.h>
 #include <memory>
 
 #include "commands.hpp"
+#include "robot_flags.hpp"
 #include "stiffpath/compliance/cross_validation.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/measurement/displacement_table.hpp"
@@ -11,15 +12,17 @@ namespace stiffpath::cli {
 
 namespace {
 struct CvOptions {
-  std::string data = "thesis";
-  std::string mechanism = "oc";
+  std::string data;
+  std::string robot;
+  std::string rows;
+  bool rows_given = false;
   std::string forces = "measured";
   std::string zero_force = "relative";
-  double link_length_mm = 150.0;
   bool json = false;
 };
 
-nlohmann::json to_json(const compliance::CvReport& r) {
+nlohmann::json to_json(const compliance::CvReport& r, const std::string& favoured,
+                       const std::vector<std::pair<std::string, double>>& scores) {
   nlohmann::json methods = nlohmann::json::array();
   for (const auto& m : r.methods) {
     nlohmann::json points = nlohmann::json::array();
@@ -31,58 +34,86 @@ nlohmann::json to_json(const compliance::CvReport& r) {
       }
       points.push_back(pj);
     }
+    double common = 0.0;
+    for (const auto& [name, score] : scores) {
+      if (name == m.method) common = score;
+    }
     methods.push_back({{"method", m.method},
                        {"description", m.description},
                        {"predicted_points", m.predicted},
                        {"mean_error_um", tidy(m.mean_um)},
                        {"max_error_um", tidy(m.max_um)},
                        {"interior_mean_error_um", tidy(m.interior_mean_um)},
+                       {"common_points_mean_error_um", tidy(common)},
                        {"points", points}});
   }
+  nlohmann::json skipped = nlohmann::json::array();
+  for (const auto& s : r.skipped) skipped.push_back({{"method", s.method}, {"reason", s.reason}});
   return {{"source", r.source},
-          {"mechanism", r.mechanism},
+          {"rows", r.rows},
+          {"robot", r.robot},
           {"force_convention", compliance::to_string(r.convention)},
           {"zero_force", compliance::to_string(r.zero_force)},
           {"error_definition", "mean of |dx error| and |dy error| over the highest load step of each load direction"},
-          {"methods", methods}};
+          {"favoured_method", favoured},
+          {"methods", methods},
+          {"could_not_run", skipped}};
 }
 
 void run(const CvOptions& o) {
-  const auto table = measurement::load_displacement_table(o.data);
-  const std::string build = resolve_build(o.mechanism);
-  const auto rows = table.filter(build);
-  if (rows.rows.empty()) throw Error(SourceLocation{table.source}, "no rows for mechanism " + build);
+  const auto robot = load_robot_flag(o.robot);
+  if (o.data.empty() && robot.compliance.table.empty()) {
+    throw Error(fmt::format("robot '{}' names no displacement table: give one as the first argument", robot.name));
+  }
+  const auto table = measurement::load_displacement_table(o.data.empty() ? robot.compliance.table : table_ref(o.data));
+  const std::string rows_name = o.rows_given ? o.rows : robot.compliance.rows;
+  const auto rows = table.filter(rows_name);
+  if (rows.rows.empty()) throw Error(SourceLocation{table.source}, "no rows with mechanism '" + rows_name + "'");
   const auto convention = compliance::parse_force_convention(o.forces);
-  auto report = compliance::cross_validate(compliance::group_by_point(rows, convention), o.link_length_mm * 1e-3,
-                                           table.source, compliance::parse_zero_force(o.zero_force));
-  report.mechanism = build;
+  auto report = compliance::cross_validate(compliance::group_by_point(rows, convention), robot.geometry, table.source,
+                                           compliance::parse_zero_force(o.zero_force));
+  report.rows = rows_name;
+  report.robot = robot.name;
   report.convention = convention;
+  std::vector<std::pair<std::string, double>> scores;
+  const std::string favoured = compliance::favoured_method(report, &scores);
   if (o.json) {
-    print_json(to_json(report));
+    print_json(to_json(report, favoured, scores));
     return;
   }
-  fmt::print("leave-one-out cross-validation, {} from {}: error = mean |dx|,|dy| error at the highest load (um)\n",
-             build, table.source);
-  fmt::print("{:<12} {:>9} {:>14} {:>10} {:>8}\n", "method", "interior", "all predicted", "max", "points");
-  for (const auto& m : report.methods) {
-    fmt::print("{:<12} {:>9.1f} {:>14.1f} {:>10.1f} {:>8}\n", m.method, m.interior_mean_um, m.mean_um, m.max_um,
-               m.predicted);
+  fmt::print("leave-one-out cross-validation, robot {}, {}{}: error = mean |dx|,|dy| error at the highest load (um)\n",
+             robot.name, table.source, rows_name.empty() ? "" : " rows " + rows_name);
+  fmt::print("{:<12} {:>9} {:>14} {:>10} {:>8} {:>14}\n", "method", "interior", "all predicted", "max", "points",
+             "common points");
+  for (std::size_t k = 0; k < report.methods.size(); ++k) {
+    const auto& m = report.methods[k];
+    fmt::print("{:<12} {:>9.1f} {:>14.1f} {:>10.1f} {:>8} {:>14.1f}\n", m.method, m.interior_mean_um, m.mean_um,
+               m.max_um, m.predicted, scores[k].second);
   }
-  fmt::print("interior = points off the grid's boundary (x2y2, x2y3, x2y4 on the thesis grid)\n");
+  for (const auto& s : report.skipped) fmt::print("{:<12} could not run: {}\n", s.method, s.reason);
+  const auto& named = robot.compliance;
+  const std::string note = !named.model.empty()    ? fmt::format("; robot {} names its model file {}", robot.name, named.model.label())
+                           : !named.method.empty() ? fmt::format("; robot {} names the method {} in its file", robot.name, named.method)
+                                                   : fmt::format("; robot {} uses it", robot.name);
+  fmt::print("interior = points strictly inside the points' bounding rectangle; common points = those every method "
+             "predicts\nfavoured: {} (what fit chooses without --method{})\n",
+             favoured, note);
 }
 }  // namespace
 
 void add_cv_command(CLI::App& app) {
   auto o = std::make_shared<CvOptions>();
-  auto* cmd = app.add_subcommand("cv", "Leave-one-out cross-validation of every compliance model");
-  cmd->add_option("data", o->data, "Displacement table CSV, or 'thesis'")->capture_default_str();
-  cmd->add_option("--mechanism", o->mechanism, "oc or sc (or a preset/file)")->capture_default_str();
+  auto* cmd = app.add_subcommand("cv", "Leave-one-out cross-validation of every compliance model that can run");
+  cmd->add_option("data", o->data, "Displacement table CSV, or 'thesis' (default: the robot's own table)");
+  add_robot_flag(cmd, o->robot);
+  auto* rows = cmd->add_option("--rows", o->rows, "Rows of the table's mechanism column (default: the robot's)");
   cmd->add_option("--forces", o->forces, "measured or nominal")->capture_default_str();
   cmd->add_option("--zero-force", o->zero_force, "relative or thesis-raw")->capture_default_str();
-  cmd->add_option("--link-length-mm", o->link_length_mm, "Five-bar link length for the physical model")
-      ->capture_default_str();
   cmd->add_flag("--json", o->json, "Print JSON");
-  cmd->callback([o] { run(*o); });
+  cmd->callback([o, rows] {
+    o->rows_given = rows->count() > 0;
+    run(*o);
+  });
 }
 
 }  // namespace stiffpath::cli

@@ -5,6 +5,8 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "robot_flags.hpp"
+#include "stiffpath/core/error.hpp"
 #include "stiffpath/core/units.hpp"
 #include "stiffpath/measurement/data_check.hpp"
 
@@ -15,6 +17,8 @@ using namespace measurement;
 
 struct DataCheckCli {
   std::string file;
+  std::string robot;
+  bool robot_given = false;
   double accuracy_um = 23.0;
   bool nominal_forces = false;
   bool json = false;
@@ -126,7 +130,17 @@ void run(const DataCheckCli& o) {
   DataCheckOptions options;
   options.accuracy_m = units::um_to_m(o.accuracy_um);
   options.nominal_forces = o.nominal_forces;
-  const auto report = check_displacements(load_displacement_table(o.file), options);
+  const auto robot = load_robot_flag(o.robot);
+  if (robot.replica) options.ul_m = robot.replica->ul_m;
+  options.mirror_symmetric = robot.geometry.mirror_symmetric_about_x();
+  if (o.file.empty() && robot.compliance.table.empty()) {
+    throw Error(fmt::format("robot '{}' names no displacement table: give one as the first argument", robot.name));
+  }
+  auto table = load_displacement_table(o.file.empty() ? robot.compliance.table : table_ref(o.file));
+  // A robot named on the command line selects its own rows; without one every row is checked (OC vs SC).
+  if (o.robot_given) table = table.filter(robot.compliance.rows);
+  if (table.rows.empty()) throw Error(SourceLocation{table.source}, "no rows with mechanism '" + robot.compliance.rows + "'");
+  const auto report = check_displacements(table, options);
   o.json ? print_json(to_json(report)) : print_text(report);
 }
 }  // namespace
@@ -136,11 +150,17 @@ void add_data_command(CLI::App& app) {
   data->require_subcommand(1);
   auto opts = std::make_shared<DataCheckCli>();
   auto* check = data->add_subcommand("check", "Linearity, symmetry, reciprocity and OC-vs-SC checks of a table");
-  check->add_option("file", opts->file, "Displacement table CSV, or 'thesis'")->required();
+  check->add_option("file", opts->file, "Displacement table CSV, or 'thesis' (default: the robot's own table)");
+  auto* robot = add_robot_flag(check, opts->robot)
+                    ->description("Robot: its rows of the table, |UL| for the angle accuracy, whether symmetry is "
+                                  "expected (default: oc-gu, every row)");
   check->add_option("--accuracy-um", opts->accuracy_um, "Accuracy of one displacement cell (um)")->capture_default_str();
   check->add_flag("--nominal-forces", opts->nominal_forces, "Regress on F_nominal_N (50 ... 250 N) instead of F_N");
   check->add_flag("--json", opts->json, "Print every result as JSON");
-  check->callback([opts] { run(*opts); });
+  check->callback([opts, robot] {
+    opts->robot_given = robot->count() > 0;
+    run(*opts);
+  });
 }
 
 }  // namespace stiffpath::cli

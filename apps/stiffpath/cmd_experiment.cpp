@@ -17,10 +17,14 @@ namespace {
 struct ExperimentArgs {
   std::string output = "experiment";
   simulation::ExperimentOptions options;
+  std::vector<std::string> paths;
+  bool motions_given = false;
   bool no_plots = false;
 };
 
-void experiment(const ExperimentArgs& a) {
+void experiment(ExperimentArgs a) {
+  for (const auto& path : a.paths) a.options.paths.push_back(simulation::user_motion(path));
+  if (!a.paths.empty() && !a.motions_given) a.options.motions.clear();  // only the user's paths
   const auto start = std::chrono::steady_clock::now();
   const auto results = simulation::run_experiment(a.options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -43,10 +47,14 @@ void experiment(const ExperimentArgs& a) {
 
 void add_experiment_command(CLI::App& app) {
   auto a = std::make_shared<ExperimentArgs>();
-  auto* cmd = app.add_subcommand("experiment", "The thesis's test matrix on the digital twin (figs. 4.9-4.11)");
+  auto* cmd = app.add_subcommand("experiment", "The thesis's test matrix on the digital twin of robots (figs. 4.9-4.11)");
   cmd->add_option("-o,--output", a->output, "Output directory (results.csv, summary.md, figures)")->capture_default_str();
-  cmd->add_option("--mechanisms", a->options.mechanisms, "Presets to run")->capture_default_str();
-  cmd->add_option("--motions", a->options.motions, "x, y, triangle")->capture_default_str();
+  cmd->add_option("--robots,--robot,--mechanisms", a->options.robots, "Presets or robot files to run")
+      ->capture_default_str();
+  auto* motions = cmd->add_option("--motions", a->options.motions,
+                                  "x, y, triangle: placed in each robot's measured rectangle")->capture_default_str();
+  cmd->add_option("--path", a->paths, "A G-code file of your own to run as FILE[:SIDES] (repeatable; without "
+                                      "--motions only these run)");
   cmd->add_option("--accelerations-g", a->options.accelerations_g, "Acceleration limits (g)")
       ->check(CLI::Range(0.1, 10.0))->capture_default_str();
   cmd->add_option("--perturbation", a->options.truth.perturbation, "Relative perturbation of C_true")
@@ -56,7 +64,10 @@ void add_experiment_command(CLI::App& app) {
   cmd->add_option("--damping-ratio", a->options.simulation.plant.tip_damping_ratio, "Damping ratio of the tip's modes")
       ->check(CLI::Range(0.0, 2.0))->capture_default_str();
   cmd->add_flag("--no-plots", a->no_plots, "Skip the gnuplot figures");
-  cmd->callback([a] { experiment(*a); });
+  cmd->callback([a, motions] {
+    a->motions_given = motions->count() > 0;
+    experiment(*a);
+  });
 }
 
 }  // namespace stiffpath::cli

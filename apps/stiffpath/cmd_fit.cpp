@@ -1,30 +1,38 @@
-// `stiffpath fit`: fit a compliance model to a displacement table and write the model file.
+// `stiffpath fit`: fit a compliance model to a robot's displacement table and write the model file.
 #include <fmt/format.h>
 #include <memory>
 
 #include "commands.hpp"
+#include "robot_flags.hpp"
 #include "stiffpath/compliance/model_factory.hpp"
 #include "stiffpath/compliance/model_file.hpp"
+#include "stiffpath/core/error.hpp"
 #include "stiffpath/measurement/displacement_table.hpp"
 
 namespace stiffpath::cli {
 
 namespace {
 struct FitOptions {
-  std::string data = "thesis";
-  std::string mechanism = "oc";
-  std::string method = "bilinear";
+  std::string data;  // default: the robot's table
+  std::string robot;
+  std::string rows;  // default: the robot's rows
+  bool rows_given = false;
+  std::string method = "auto";
   std::string forces = "measured";
-  std::string outside = "clamp";
+  std::string outside = "error";
   std::string zero_force = "relative";
   std::string output;
   bool json = false;
 };
 
 void run(const FitOptions& o) {
-  const auto table = measurement::load_displacement_table(o.data);
-  auto fitted = compliance::fit_model(table, resolve_build(o.mechanism), o.method,
-                                      compliance::parse_force_convention(o.forces));
+  const auto robot = load_robot_flag(o.robot);
+  if (o.data.empty() && robot.compliance.table.empty()) {
+    throw Error(fmt::format("robot '{}' names no displacement table: give one as the first argument", robot.name));
+  }
+  const auto table = measurement::load_displacement_table(o.data.empty() ? robot.compliance.table : table_ref(o.data));
+  const std::string rows = o.rows_given ? o.rows : robot.compliance.rows;
+  auto fitted = compliance::fit_model(table, rows, o.method, compliance::parse_force_convention(o.forces), robot);
   fitted.model->set_outside_policy(compliance::parse_outside_policy(o.outside));
   fitted.model->set_zero_force(compliance::parse_zero_force(o.zero_force));
   const nlohmann::json doc = compliance::model_to_json(*fitted.model, fitted.provenance);
@@ -33,8 +41,20 @@ void run(const FitOptions& o) {
     print_json(doc);
     return;
   }
-  fmt::print("{} model of {} from {} ({} forces, {}, outside grid: {})\n", fitted.model->method(),
-             fitted.provenance.mechanism, fitted.provenance.source, o.forces, o.zero_force, o.outside);
+  fmt::print("{} model of robot {} from {}{} ({} forces, {}, outside the measured region: {})\n", fitted.model->method(),
+             robot.name, fitted.provenance.source, rows.empty() ? "" : " rows " + rows, o.forces, o.zero_force,
+             o.outside);
+  if (fitted.provenance.selected_by == "cross-validation") {
+    std::string scores;
+    for (const auto& [name, um] : fitted.provenance.selection["mean_error_um"].items()) {
+      scores += fmt::format("{}{} {:.1f}", scores.empty() ? "" : ", ", name, um.get<double>());
+    }
+    fmt::print("method chosen by leave-one-out cross-validation (mean error in um on the points all predict): {}\n",
+               scores);
+    for (const auto& [name, why] : fitted.provenance.selection["could_not_run"].items()) {
+      fmt::print("  {} could not run: {}\n", name, why.get<std::string>());
+    }
+  }
   if (doc.contains("nodes")) {
     fmt::print("{:>6} {:>9} {:>7} {:>9} {:>9} {:>9} {:>9}   (C in um/N)\n", "point", "x_mm", "y_mm", "Cxx", "Cxy", "Cyx",
                "Cyy");
@@ -53,18 +73,24 @@ void run(const FitOptions& o) {
 
 void add_fit_command(CLI::App& app) {
   auto o = std::make_shared<FitOptions>();
-  auto* cmd = app.add_subcommand("fit", "Fit a compliance model (thesis eqs. 4.8-4.12, or a better one) to a table");
-  cmd->add_option("data", o->data, "Displacement table CSV, or 'thesis' for the built-in data set")->capture_default_str();
-  cmd->add_option("--mechanism", o->mechanism, "oc, sc, or a preset/file whose build selects the rows")->capture_default_str();
-  cmd->add_option("--method", o->method, "bilinear (thesis), symmetric, physical, physical-0, physical-2")
+  auto* cmd = app.add_subcommand("fit", "Fit a compliance model (thesis eqs. 4.8-4.12, or a better one) to a robot's table");
+  cmd->add_option("data", o->data, "Displacement table CSV, or 'thesis' (default: the robot's own table)");
+  add_robot_flag(cmd, o->robot);
+  auto* rows = cmd->add_option("--rows", o->rows, "Rows of the table's mechanism column to use (default: the robot's)");
+  cmd->add_option("--method", o->method,
+                  "auto (the method cross-validation favours), bilinear (thesis), symmetric, physical, physical-0, physical-2")
       ->capture_default_str();
   cmd->add_option("--forces", o->forces, "measured (kgf relative to step 0) or nominal (50-250 N)")->capture_default_str();
-  cmd->add_option("--outside", o->outside, "Outside the grid: clamp, extrapolate or error")->capture_default_str();
+  cmd->add_option("--outside", o->outside,
+                  "Beyond 1 mm outside the measured region: error (refuse), clamp or extrapolate")->capture_default_str();
   cmd->add_option("--zero-force", o->zero_force, "relative (default) or thesis-raw (keep eq. 4.8's intercepts)")
       ->capture_default_str();
   cmd->add_option("-o,--output", o->output, "Write the model file (JSON)");
   cmd->add_flag("--json", o->json, "Print the model document");
-  cmd->callback([o] { run(*o); });
+  cmd->callback([o, rows] {
+    o->rows_given = rows->count() > 0;
+    run(*o);
+  });
 }
 
 }  // namespace stiffpath::cli

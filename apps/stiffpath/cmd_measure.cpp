@@ -7,7 +7,8 @@
 
 #include "commands.hpp"
 #include "stiffpath/core/units.hpp"
-#include "stiffpath/kinematics/mechanism_spec.hpp"
+#include "robot_flags.hpp"
+#include "stiffpath/core/error.hpp"
 #include "stiffpath/measurement/campaign.hpp"
 #include "stiffpath/measurement/process_campaign.hpp"
 
@@ -16,7 +17,7 @@ namespace stiffpath::cli {
 namespace {
 struct MeasureOptions {
   std::string campaign;
-  std::string mechanism = "oc-gu";
+  std::string robot;
   std::string output;
   bool nominal_forces = false;
   double nominal_step_N = 50.0;
@@ -24,11 +25,15 @@ struct MeasureOptions {
 };
 
 void run(const MeasureOptions& o) {
-  const auto spec = kinematics::load_mechanism(o.mechanism);
+  const auto robot = load_robot_flag(o.robot);
+  if (!robot.replica) {
+    throw Error(SourceLocation{robot.file.label()},
+                fmt::format("robot '{}' has no measurement replica (measurement.UG_mm, UL_mm) for eq. 2.3", robot.name));
+  }
   const auto campaign = measurement::load_campaign(o.campaign);
   measurement::ProcessOptions p;
-  p.mechanism = spec.build;
-  p.geometry = {spec.ug_m, spec.ul_m};
+  p.mechanism = robot.compliance.rows;
+  p.geometry = {robot.replica->ug_m, robot.replica->ul_m};
   p.force_basis = o.nominal_forces ? measurement::ForceBasis::nominal : measurement::ForceBasis::measured;
   p.nominal_step_N = o.nominal_step_N;
   const auto table = measurement::process_campaign(campaign, p);
@@ -51,10 +56,10 @@ void run(const MeasureOptions& o) {
   const nlohmann::json summary = {
       {"campaign", o.campaign},
       {"output", o.output},
-      {"mechanism", spec.name},
-      {"build", spec.build},
-      {"ug_mm", tidy(units::m_to_mm(spec.ug_m))},
-      {"ul_mm", tidy(units::m_to_mm(spec.ul_m))},
+      {"robot", robot.name},
+      {"robot_rows", robot.compliance.rows},
+      {"ug_mm", tidy(units::m_to_mm(robot.replica->ug_m))},
+      {"ul_mm", tidy(units::m_to_mm(robot.replica->ul_m))},
       {"force_basis", o.nominal_forces ? "nominal" : "measured"},
       {"readings", campaign.readings.size()},
       {"rows", table.rows.size()},
@@ -67,7 +72,8 @@ void run(const MeasureOptions& o) {
     return;
   }
   fmt::print("{} readings -> {} rows ({} {}, G = U + {:.0f}/{:.0f} UL, forces {})\n", campaign.readings.size(),
-             table.rows.size(), spec.name, spec.build, units::m_to_mm(spec.ug_m), units::m_to_mm(spec.ul_m),
+             table.rows.size(), robot.name, robot.compliance.rows, units::m_to_mm(robot.replica->ug_m),
+             units::m_to_mm(robot.replica->ul_m),
              o.nominal_forces ? "nominal 50 N steps" : "measured, relative to step 0");
   fmt::print("largest total displacement {:.4f} mm at {}\n", units::m_to_mm(max_total), max_where);
   if (with_spread > 0) {
@@ -82,8 +88,7 @@ void add_measure_command(CLI::App& app) {
   auto opts = std::make_shared<MeasureOptions>();
   auto* cmd = app.add_subcommand("measure", "Process a raw CMM campaign (U, L readings) into a displacement table");
   cmd->add_option("campaign", opts->campaign, "Campaign CSV (see docs/measurement.md)")->required();
-  cmd->add_option("--mechanism", opts->mechanism, "Preset or JSON file: |UG|, |UL| and the build label")
-      ->capture_default_str();
+  add_robot_flag(cmd, opts->robot)->description("Robot: |UG|, |UL| of its replica and its rows label (default: oc-gu)");
   cmd->add_option("-o,--output", opts->output, "Displacement table CSV to write")->required();
   cmd->add_flag("--nominal-forces", opts->nominal_forces,
                 "Write F_N as step x nominal step (50 ... 250 N) as the thesis did, not the measured kgf");

@@ -1,55 +1,76 @@
-// `stiffpath mechanism show|list`: print a preset or a user's mechanism file.
+// `stiffpath robot show|list` (alias `mechanism`): print a preset or a user's robot file.
 #include <fmt/format.h>
 #include <memory>
 
 #include "commands.hpp"
+#include "robot_flags.hpp"
 #include "stiffpath/core/units.hpp"
-#include "stiffpath/kinematics/mechanism_spec.hpp"
 
 namespace stiffpath::cli {
 
 namespace {
-struct MechanismOptions {
-  std::string which = "oc-gu";
+struct RobotOptions {
+  std::string which = kDefaultRobot;
   bool json = false;
 };
 
-void show(const MechanismOptions& o) {
-  const auto spec = kinematics::load_mechanism(o.which);
+std::string mm(const kinematics::Vec2& p) {
+  return fmt::format("({:.3f}, {:.3f}) mm", units::m_to_mm(p.x()), units::m_to_mm(p.y()));
+}
+
+void show(const RobotOptions& o) {
+  const auto r = kinematics::load_robot(o.which);
   if (o.json) {
-    print_json(kinematics::to_json(spec));
+    print_json(kinematics::to_json(r));
     return;
   }
-  fmt::print("{} ({}): {}\n", spec.name, spec.source, spec.description);
-  fmt::print("  build                {}\n", spec.build);
-  fmt::print("  link length          {:.3f} mm (all four links)\n", units::m_to_mm(spec.link_length_m));
-  fmt::print("  moving mass          {:.3f} kg\n", spec.moving_mass_kg);
-  fmt::print("  centre of gravity    {} at {:.1f} mm above G\n", spec.cg_label, units::m_to_mm(spec.cg_height_m));
-  fmt::print("  measurement replica  |UG| = {:.1f} mm, |UL| = {:.1f} mm\n", units::m_to_mm(spec.ug_m),
-             units::m_to_mm(spec.ul_m));
-  for (const auto& j : spec.joints) {
+  const auto& g = r.geometry;
+  fmt::print("{} ({}): {}\n", r.name, r.source(), r.description);
+  fmt::print("  actuators            left {}, right {}\n", mm(g.actuator_m[0]), mm(g.actuator_m[1]));
+  fmt::print("  links                left {:.3f} + {:.3f} mm, right {:.3f} + {:.3f} mm (proximal + distal)\n",
+             units::m_to_mm(g.proximal_m[0]), units::m_to_mm(g.distal_m[0]), units::m_to_mm(g.proximal_m[1]),
+             units::m_to_mm(g.distal_m[1]));
+  fmt::print("  working mode         elbows [{:+d}, {:+d}], assembly {:+d}{}\n", g.elbows[0], g.elbows[1], g.assembly,
+             g.is_thesis_case() ? " (the thesis's parallelogram five-bar: eqs. 2.1-2.2)" : "");
+  fmt::print("  geometry sha256      {}\n", r.geometry_hash());
+  fmt::print("  moving mass          {:.3f} kg\n", r.moving_mass_kg);
+  fmt::print("  centre of gravity    {} at {:.1f} mm above G\n", r.cg_label, units::m_to_mm(r.cg_height_m));
+  if (r.replica) {
+    fmt::print("  measurement replica  |UG| = {:.1f} mm, |UL| = {:.1f} mm\n", units::m_to_mm(r.replica->ug_m),
+               units::m_to_mm(r.replica->ul_m));
+  }
+  for (const auto& j : r.joints) {
     fmt::print("  joint {:<7}        [{:.1f}, {:.1f}] deg, |w| <= {:.1f} rad/s, |a| <= {:.0f} rad/s^2\n", j.name,
                units::rad_to_deg(j.min_rad), units::rad_to_deg(j.max_rad), j.max_velocity_rad_s,
                j.max_acceleration_rad_s2);
   }
-  fmt::print("  singularity margin   {:.1f} mm, condition number <= {:.1f}\n",
-             units::m_to_mm(spec.margin.min_distance_m), spec.margin.max_condition_number);
-  fmt::print("  compliance data      {}\n", spec.compliance_dataset);
+  fmt::print("  singularity margin   {:.1f} mm, condition number <= {:.1f}, distal links >= {:.1f} deg from collinear\n",
+             units::m_to_mm(r.margin.min_distance_m), r.margin.max_condition_number,
+             units::rad_to_deg(r.margin.min_distal_angle_rad));
+  if (r.home_m) fmt::print("  home                 {}\n", mm(*r.home_m));
+  const auto& c = r.compliance;
+  fmt::print("  compliance table     {}{}\n", c.table.empty() ? "(none)" : c.table.label(),
+             c.rows.empty() ? "" : ", rows " + c.rows);
+  fmt::print("  compliance model     {}\n", !c.model.empty()      ? c.model.label()
+                                          : !c.method.empty()    ? c.method + " fitted to the table"
+                                          : c.table.empty()      ? "(none)"
+                                                                 : "fitted to the table by the method cross-validation favours");
 }
 }  // namespace
 
 void add_mechanism_command(CLI::App& app) {
-  auto* mech = app.add_subcommand("mechanism", "Robot presets and mechanism files");
-  mech->require_subcommand(1);
-  auto opts = std::make_shared<MechanismOptions>();
-  auto* show_cmd = mech->add_subcommand("show", "Print a preset (oc-gu, oc-gl, sc-gu, sc-gl) or a JSON file");
-  show_cmd->add_option("mechanism", opts->which, "Preset name or JSON file")->capture_default_str();
-  show_cmd->add_flag("--json", opts->json, "Print the mechanism as JSON (the file format)");
+  auto* cmd = app.add_subcommand("robot", "Robot presets and robot files");
+  cmd->alias("mechanism");
+  cmd->require_subcommand(1);
+  auto opts = std::make_shared<RobotOptions>();
+  auto* show_cmd = cmd->add_subcommand("show", "Print a preset (oc-gu, oc-gl, sc-gu, sc-gl) or a robot file");
+  show_cmd->add_option("robot", opts->which, "Preset name or robot file")->capture_default_str();
+  show_cmd->add_flag("--json", opts->json, "Print the robot as JSON: a robot file (paths resolved)");
   show_cmd->callback([opts] { show(*opts); });
-  auto* list_cmd = mech->add_subcommand("list", "List the built-in presets");
+  auto* list_cmd = cmd->add_subcommand("list", "List the built-in presets");
   list_cmd->callback([] {
     for (const auto& name : kinematics::preset_names()) {
-      fmt::print("{:<6} {}\n", name, kinematics::load_mechanism(name).description);
+      fmt::print("{:<6} {}\n", name, kinematics::load_robot(name).description);
     }
   });
 }

@@ -1,4 +1,5 @@
 // `stiffpath plan`: G-code to a jerk-limited trajectory sampled at 2 kHz (thesis §4.3, fig. 4.3), as CSV.
+#include <cstdint>
 #include <fmt/format.h>
 #include <memory>
 #include <optional>
@@ -6,6 +7,7 @@
 
 #include "commands.hpp"
 #include "motion_flags.hpp"
+#include "robot_flags.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/core/units.hpp"
 #include "stiffpath/motion/trajectory_csv.hpp"
@@ -15,46 +17,108 @@ namespace stiffpath::cli {
 
 namespace {
 
+//! Default cap on the samples of one plan: 20 million, 2 h 46 min 40 s at 2 kHz, about 2.4 GB of CSV.
+constexpr std::uint64_t default_max_samples = 20'000'000;
+//! Bytes of a typical CSV row (the x motion's rows average 110), for the size quoted in a refusal.
+constexpr double csv_row_bytes = 120.0;
+
 struct PlanArgs {
   std::string job;
   std::string output;
+  std::string robot;
   bool json = false;
+  std::uint64_t max_samples = default_max_samples;
   MotionFlags motion;
 };
 
+nlohmann::json warnings_json(const std::vector<motion::GcodeWarning>& warnings) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& w : warnings) {
+    list.push_back({{"kind", motion::to_string(w.kind)}, {"message", w.message}, {"count", w.count}, {"first_line", w.first_line}});
+  }
+  return list;
+}
+
+// Plans without sampling first, so a job beyond the cap is refused before a sample is made.
+void check_size(const PlanArgs& a, const motion::PlanOptions& options) {
+  const motion::PlanSize size = motion::measure_plan(a.job, options);
+  if (size.samples <= a.max_samples) return;
+  const double bytes = static_cast<double>(size.samples) * csv_row_bytes;
+  const std::string csv = bytes < 1e9 ? fmt::format("{:.1f} MB", bytes * 1e-6) : fmt::format("{:.1f} GB", bytes * 1e-9);
+  throw Error(SourceLocation{a.job}, fmt::format("the plan has {} samples ({:.1f} s at {:g} Hz, about {} of CSV), more "
+                                                 "than the cap of {}; raise it with --max-samples",
+                                                 size.samples, size.duration_s, options.rate_hz, csv, a.max_samples));
+}
+
+// Passes the planned samples on and refuses the first one the robot cannot reach (singularity margins,
+// assembly mode, joint position limits), naming its G-code line, time and point.
+class WorkspaceCheck final : public motion::SampleSource {
+ public:
+  WorkspaceCheck(motion::SampleSource& inner, const kinematics::Robot& robot, std::string job)
+      : inner_(inner), robot_(robot), five_bar_(robot.five_bar()), job_(std::move(job)) {}
+  std::optional<motion::TrajectorySample> next() override {
+    auto s = inner_.next();
+    if (!s) return s;
+    const auto r = five_bar_.solve_inverse(s->position_m);
+    if (r.status != kinematics::Reach::ok || !robot_.within_limits(r.q)) {
+      throw Error(SourceLocation{job_, s->line},
+                  fmt::format("t = {:.4f} s: point (x = {:.4f} mm, y = {:.4f} mm) is outside robot {}'s workspace: {}",
+                              s->t_s, units::m_to_mm(s->position_m.x()), units::m_to_mm(s->position_m.y()), robot_.name,
+                              robot_.refusal(s->position_m)));
+    }
+    return s;
+  }
+
+ private:
+  motion::SampleSource& inner_;
+  const kinematics::Robot& robot_;
+  kinematics::FiveBar five_bar_;
+  std::string job_;
+};
+
 void run_plan(const PlanArgs& a) {
-  const motion::PlanOptions options = plan_options(a.motion);
-  motion::TrajectoryStream stream(a.job, options);
+  const auto robot = load_robot_flag(a.robot);
+  motion::PlanOptions options = plan_options(a.motion, robot);
+  if (a.json) options.gcode.on_warnings = nullptr;  // they go into the JSON document
+  check_size(a, options);
+  motion::TrajectoryStream planned(a.job, options);
+  WorkspaceCheck stream(planned, robot, a.job);
   const motion::TrajectorySummary summary = a.output.empty()
                                                 ? motion::summarize(stream, options.rate_hz)
                                                 : motion::write_trajectory_csv(stream, options.rate_hz, a.output);
-  const auto& planner = stream.planner_statistics();
+  const auto& planner = planned.planner_statistics();
   if (a.json) {
     print_json({{"job", a.job},
+                {"robot", robot.name},
                 {"duration_s", tidy(summary.duration_s)},
                 {"samples", summary.samples},
-                {"segments", stream.segments()},
+                {"segments", planned.segments()},
                 {"rate_hz", tidy(options.rate_hz)},
                 {"peak_velocity_m_s", tidy(summary.peak_velocity_m_s)},
                 {"peak_acceleration_m_s2", tidy(summary.peak_acceleration_m_s2)},
                 {"peak_jerk_m_s3", tidy(summary.peak_jerk_m_s3)},
                 {"laser_on_s", tidy(summary.laser_on_s)},
+                {"laser_full_power_s", tidy(summary.laser_full_power_s)},
+                {"peak_power", tidy(summary.peak_power)},
                 {"max_velocity_m_s", tidy(options.limits.max_velocity_m_s)},
                 {"max_acceleration_m_s2", tidy(options.limits.max_acceleration_m_s2)},
                 {"max_jerk_m_s3", tidy(options.limits.max_jerk_m_s3)},
                 {"lookahead_peak_segments", planner.peak_window},
+                {"warnings", warnings_json(planned.warnings())},
                 {"output", a.output.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.output)}});
     return;
   }
-  fmt::print("{}: {} segment{}, {} samples at {:g} Hz, duration {:.6f} s\n", a.job, stream.segments(),
-             stream.segments() == 1 ? "" : "s", summary.samples, options.rate_hz, summary.duration_s);
+  fmt::print("{}: {} segment{}, {} samples at {:g} Hz, duration {:.6f} s, inside robot {}'s workspace\n", a.job,
+             planned.segments(), planned.segments() == 1 ? "" : "s", summary.samples, options.rate_hz, summary.duration_s,
+             robot.name);
   fmt::print("limits: v {:.1f} mm/s, a {:.3f} m/s^2 ({:.2f} g), j {:.1f} m/s^3\n", units::m_to_mm(options.limits.max_velocity_m_s),
              options.limits.max_acceleration_m_s2, options.limits.max_acceleration_m_s2 / units::standard_gravity_m_s2,
              options.limits.max_jerk_m_s3);
   fmt::print("peaks:  v {:.1f} mm/s, a {:.3f} m/s^2 ({:.2f} g), j {:.1f} m/s^3\n", units::m_to_mm(summary.peak_velocity_m_s),
              summary.peak_acceleration_m_s2, summary.peak_acceleration_m_s2 / units::standard_gravity_m_s2,
              summary.peak_jerk_m_s3);
-  fmt::print("laser on {:.4f} s; the look-ahead held at most {} segment{}\n", summary.laser_on_s, planner.peak_window,
+  fmt::print("laser on {:.4f} s (peak power {:.1f} %, {:.4f} s at full power); the look-ahead held at most {} segment{}\n",
+             summary.laser_on_s, 100.0 * summary.peak_power, summary.laser_full_power_s, planner.peak_window,
              planner.peak_window == 1 ? "" : "s");
   if (!a.output.empty()) fmt::print("wrote {}\n", a.output);
 }
@@ -66,8 +130,11 @@ void add_plan_command(CLI::App& app) {
   auto a = std::make_shared<PlanArgs>();
   cmd->add_option("job", a->job, "G-code program (mm, robot frame unless --work-offset-mm)")->required();
   add_motion_flags(cmd, a->motion);
+  add_robot_flag(cmd, a->robot)->description("Robot whose workspace every sample must lie in (default: oc-gu)");
   cmd->add_option("-o,--output", a->output, "Write the samples to this CSV file");
-  cmd->add_flag("--json", a->json, "Print the summary as JSON");
+  cmd->add_option("--max-samples", a->max_samples, "Refuse a plan with more samples than this (20 M: 2 h 46 min at 2 kHz)")
+      ->capture_default_str();
+  cmd->add_flag("--json", a->json, "Print the summary as JSON (errors too, on stderr)");
   cmd->callback([a] { run_plan(*a); });
 }
 

@@ -1,8 +1,9 @@
-// `stiffpath predict`: the deflection a compliance model predicts at a point under a force.
+// `stiffpath predict`: the deflection a robot's compliance model predicts at a point under a force.
 #include <fmt/format.h>
 #include <memory>
 
 #include "commands.hpp"
+#include "robot_flags.hpp"
 #include "stiffpath/compliance/model_factory.hpp"
 #include "stiffpath/compliance/point_fit.hpp"
 #include "stiffpath/compliance/tool_point.hpp"
@@ -13,24 +14,33 @@ namespace stiffpath::cli {
 
 namespace {
 struct PredictOptions {
-  std::string model = "thesis-oc";
+  std::string robot;
+  compliance::ModelRequest request;
+  std::string outside;
   double x_mm = 0.0, y_mm = 0.0, fx_n = 0.0, fy_n = 0.0;
   double tool_below_G_mm = 0.0;
   bool tool = false;
-  std::string angles = "thesis";
+  std::string angles;  // default: the table the model was fitted to
   bool json = false;
 };
 
 void run(const PredictOptions& o) {
-  const auto loaded = compliance::load_model(o.model);
+  const auto robot = load_robot_flag(o.robot);
+  auto loaded = compliance::load_robot_model(robot, o.request);
+  if (!o.outside.empty()) loaded.model->set_outside_policy(compliance::parse_outside_policy(o.outside));
   const compliance::Model& model = *loaded.model;
   const compliance::Vec2 p{o.x_mm * 1e-3, o.y_mm * 1e-3}, F{o.fx_n, o.fy_n};
-  if (!model.inside(p) && model.outside_policy() == compliance::OutsidePolicy::error) {
-    throw Error(fmt::format("point ({}, {}) mm is outside the model's grid and its policy is 'error'", o.x_mm, o.y_mm));
+  if (model.refuses(p)) {
+    const auto b = model.bounds();
+    throw Error(fmt::format("point ({}, {}) mm is more than {:g} mm outside the measured region of model {}, x [{:.3f}, "
+                            "{:.3f}] mm, y [{:.3f}, {:.3f}] mm (use --outside clamp or extrapolate)",
+                            o.x_mm, o.y_mm, compliance::kOutsideMargin_m * 1e3, loaded.label, b.x_min * 1e3,
+                            b.x_max * 1e3, b.y_min * 1e3, b.y_max * 1e3));
   }
   const compliance::Vec2 d = model.predict(p, F);
   const compliance::Mat2 c = model.compliance(p) * 1e6;
-  nlohmann::json out = {{"model", o.model},
+  nlohmann::json out = {{"robot", robot.name},
+                        {"model", loaded.label},
                         {"method", model.method()},
                         {"x_mm", o.x_mm},
                         {"y_mm", o.y_mm},
@@ -41,10 +51,12 @@ void run(const PredictOptions& o) {
                         {"inside_grid", model.inside(p)},
                         {"C_um_per_N", {{tidy(c(0, 0)), tidy(c(0, 1))}, {tidy(c(1, 0)), tidy(c(1, 1))}}}};
   if (o.tool) {
-    const auto table = measurement::load_displacement_table(o.angles).filter(loaded.provenance.mechanism);
+    const core::DataRef angles_ref = !o.angles.empty() ? table_ref(o.angles) : robot.compliance.table;
+    if (angles_ref.empty()) throw Error("--tool-below-g-mm needs a table with rx_deg, ry_deg: give --angles");
+    const auto table = measurement::load_displacement_table(angles_ref).filter(loaded.provenance.rows);
     std::shared_ptr<const compliance::GridModel> angular =
-        compliance::make_angular_model(compliance::fit_points(table, loaded.provenance.convention), o.angles);
-    std::shared_ptr<const compliance::Model> at_G = compliance::load_model(o.model).model;
+        compliance::make_angular_model(compliance::fit_points(table, loaded.provenance.convention), table.source);
+    std::shared_ptr<const compliance::Model> at_G = compliance::load_robot_model(robot, o.request).model;
     const compliance::ToolPointModel tool(at_G, angular, o.tool_below_G_mm * 1e-3);
     const compliance::Vec2 dt = tool.predict(p, F);
     out["tool_below_G_mm"] = o.tool_below_G_mm;
@@ -56,8 +68,9 @@ void run(const PredictOptions& o) {
     print_json(out);
     return;
   }
-  fmt::print("{} ({}) at ({}, {}) mm under F = ({}, {}) N{}:\n", o.model, model.method(), o.x_mm, o.y_mm, o.fx_n, o.fy_n,
-             model.inside(p) ? "" : fmt::format(" [outside the grid: {}]", compliance::to_string(model.outside_policy())));
+  fmt::print("{} ({}) of robot {} at ({}, {}) mm under F = ({}, {}) N{}:\n", loaded.label, model.method(), robot.name,
+             o.x_mm, o.y_mm, o.fx_n, o.fy_n,
+             model.inside(p) ? "" : fmt::format(" [outside the measured region: {}]", compliance::to_string(model.outside_policy())));
   fmt::print("  dx = {:.2f} um, dy = {:.2f} um at G\n", d.x() * 1e6, d.y() * 1e6);
   fmt::print("  C = [{:.4f} {:.4f}; {:.4f} {:.4f}] um/N\n", c(0, 0), c(0, 1), c(1, 0), c(1, 1));
   if (o.tool) {
@@ -71,14 +84,16 @@ void run(const PredictOptions& o) {
 void add_predict_command(CLI::App& app) {
   auto o = std::make_shared<PredictOptions>();
   auto* cmd = app.add_subcommand("predict", "Predict the deflection at a point under a force (eqs. 4.6-4.7)");
-  cmd->add_option("--model", o->model, "Model file, or built-in thesis-oc / thesis-sc[-<method>]")->capture_default_str();
+  add_robot_flag(cmd, o->robot);
+  add_model_flags(cmd, o->request);
+  cmd->add_option("--outside", o->outside, "Beyond the measured region: error, clamp or extrapolate (default: model's)");
   cmd->add_option("--x-mm", o->x_mm, "Platform x (mm)")->required();
   cmd->add_option("--y-mm", o->y_mm, "Platform y (mm)")->required();
   cmd->add_option("--fx-n", o->fx_n, "Force along x (N)")->required();
   cmd->add_option("--fy-n", o->fy_n, "Force along y (N)")->required();
   auto* tool = cmd->add_option("--tool-below-g-mm", o->tool_below_G_mm,
                                "Also predict at a tool point this far below G, using the angular deflections");
-  cmd->add_option("--angles", o->angles, "Table with rx_deg, ry_deg for --tool-below-g-mm")->capture_default_str();
+  cmd->add_option("--angles", o->angles, "Table with rx_deg, ry_deg for --tool-below-g-mm (default: the robot's)");
   cmd->add_flag("--json", o->json, "Print JSON (keys dx_um, dy_um, ...)");
   cmd->callback([o, tool] {
     o->tool = tool->count() > 0;

@@ -1,15 +1,18 @@
-// `stiffpath render-scan`: draws a synthetic scan of a marked path and reports its ground truth.
+// `stiffpath render-scan`: draws a synthetic scan of a marked path, or of a plate of marks, and reports its ground truth.
+#include <cmath>
 #include <fmt/format.h>
 #include <memory>
 #include <numbers>
 #include <sstream>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "stiffpath/core/atomic_file.hpp"
 #include "stiffpath/core/csv.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/evaluation/metrics_json.hpp"
 #include "stiffpath/vision/image_io.hpp"
+#include "stiffpath/vision/plate.hpp"
 #include "stiffpath/vision/render.hpp"
 
 namespace stiffpath::cli {
@@ -17,11 +20,11 @@ namespace stiffpath::cli {
 namespace {
 
 struct RenderCliOptions {
-  std::string output, shape = "line", vertices_mm, path_csv, truth;
+  std::string output, shape = "line", vertices_mm, path_csv, plate, truth;
   double length_mm = 100, side_mm = 40, angle_deg = 0, width_mm = 0.2, margin_mm = 2;
-  double wiggle_mm = 0, wiggle_wavelength_mm = 10, wiggle_decay_mm = 40;
+  double wiggle_mm = 0, wiggle_wavelength_mm = 10, wiggle_decay_mm = 40, trim_mm = 1.0;
   int sides = 1;
-  bool json = false;
+  bool json = false, quiet = false;
   vision::RenderOptions render;
 };
 
@@ -40,64 +43,109 @@ std::vector<evaluation::Point2> parse_vertices(const std::string& text) {
   return out;
 }
 
-// A marked path from a CSV file with columns x_mm, y_mm (for example a simulated path), cut into sides.
-std::pair<std::vector<std::vector<evaluation::Point2>>, bool> read_path(const std::string& path, int sides) {
-  core::CsvReader csv(path);
-  const auto cx = csv.column("x_mm"), cy = csv.column("y_mm");
-  std::vector<evaluation::Point2> points;
-  while (csv.next()) {
-    const evaluation::Point2 p{csv.number(cx) * 1e-3, csv.number(cy) * 1e-3};
-    if (points.empty() || (p - points.back()).norm() > 1e-12) points.push_back(p);  // a robot at rest repeats points
+// Renders into the output file: a PNG row band by row band (never the whole image in memory), other
+// formats from the whole image.
+template <class Render>
+auto render_to(const RenderCliOptions& o, int width, int height, const Render& render) {
+  const std::string ext = std::filesystem::path(o.output).extension().string();
+  if (ext == ".png" || ext == ".PNG") {
+    const int type = CV_MAKETYPE(o.render.bit_depth == 8 ? CV_8U : CV_16U, o.render.colour ? 3 : 1);
+    vision::PngRowWriter png(o.output, width, height, type, o.render.dpi);
+    auto result = render([&](int, const cv::Mat& rows) { png.write(rows); });
+    png.commit();
+    return result;
   }
-  if (points.size() < 2) throw Error(SourceLocation{path, 0, 0}, "a path needs at least two points");
-  // Drawn and measured as the polyline through the points, sampled every 20 µm.
-  std::vector<evaluation::Point2> dense;
-  for (const auto& piece : vision::sample_shape({points, false}, {})) {
-    dense.insert(dense.end(), piece.begin() + (dense.empty() ? 0 : 1), piece.end());
+  vision::encode_image(cv::Mat(1, 1, CV_8U), o.output, o.render.dpi);  // refuse an unknown extension before the work
+  auto result = render(vision::RowSink{});
+  vision::write_image(o.output, result.image, result.dpi);
+  return result;
+}
+
+nlohmann::json plate_truth(const vision::RenderedPlate& plate, const vision::Plate& page) {
+  using evaluation::round_for_json;
+  nlohmann::json marks = nlohmann::json::array();
+  for (std::size_t k = 0; k < plate.marks.size(); ++k) {
+    nlohmann::json m = evaluation::to_json(plate.marks[k].truth);
+    const auto& b = plate.marks[k].box_m;
+    m["index"] = k + 1;
+    m["box_mm"] = {round_for_json(b.x * 1e3), round_for_json(b.y * 1e3), round_for_json(b.width * 1e3), round_for_json(b.height * 1e3)};
+    marks.push_back(std::move(m));
   }
-  if (sides == 1) return {{dense}, false};
-  auto split = evaluation::split_polyline(dense, sides);
-  return {split.sides, split.closed};
+  nlohmann::json out;
+  out["page_mm"] = {round_for_json(page.width_m * 1e3), round_for_json(page.height_m * 1e3)};
+  out["labels"] = page.labels.size();
+  out["marks"] = std::move(marks);
+  return out;
 }
 
 void run_render(RenderCliOptions& o) {
   o.render.mark_width_m = o.width_mm * 1e-3;
   o.render.rotation_rad = o.angle_deg * std::numbers::pi / 180.0;
   o.render.margin_m = o.margin_mm * 1e-3;
-  const vision::Wiggle wiggle{o.wiggle_mm * 1e-3, o.wiggle_wavelength_mm * 1e-3, o.wiggle_decay_mm * 1e-3};
-  std::vector<std::vector<evaluation::Point2>> sides;
-  bool closed = false;
-  if (!o.path_csv.empty()) {
-    std::tie(sides, closed) = read_path(o.path_csv, o.sides);
-  } else {
-    vision::PathShape shape;
-    if (o.shape == "line") {
-      shape = vision::line_shape(o.length_mm * 1e-3);
-    } else if (o.shape == "triangle") {
-      shape = vision::triangle_shape(o.side_mm * 1e-3);
-    } else if (o.shape == "polyline") {
-      shape = {parse_vertices(o.vertices_mm), false};
-    } else {
-      throw Error(fmt::format("--shape: expected line, triangle or polyline, got '{}'", o.shape));
-    }
-    sides = vision::sample_shape(shape, wiggle);
-    closed = shape.closed;
-  }
-  const vision::RenderedScan scan = vision::render_scan(sides, closed, o.render);
-  vision::write_image(o.output, scan.image, scan.dpi);
+  if (!(o.trim_mm >= 0.0) || !std::isfinite(o.trim_mm)) throw Error(fmt::format("--corner-trim-mm must be >= 0, got {}", o.trim_mm));
+  o.render.truth_options.corner_trim_m = o.trim_mm * 1e-3;
+  Progress progress("render-scan", o.quiet);
+  o.render.progress = progress.callback();
 
-  nlohmann::json truth = evaluation::to_json(scan.truth);
-  truth["width_mm"] = evaluation::round_for_json(scan.mark_width_m * 1e3);
-  truth["dpi"] = scan.dpi;
+  nlohmann::json truth;
+  int width = 0, height = 0;
+  if (!o.plate.empty()) {
+    const vision::Plate page = vision::load_plate(o.plate);
+    const double px_per_m = o.render.dpi / 0.0254;
+    width = static_cast<int>(std::ceil(page.width_m * px_per_m));
+    height = static_cast<int>(std::ceil(page.height_m * px_per_m));
+    const auto plate = render_to(o, width, height, [&](const vision::RowSink& sink) {
+      return sink ? vision::render_plate(page, o.render, sink) : vision::render_plate(page, o.render);
+    });
+    truth = plate_truth(plate, page);
+  } else {
+    std::vector<std::vector<evaluation::Point2>> sides;
+    bool closed = false;
+    if (!o.path_csv.empty()) {
+      auto mark = vision::load_mark_csv(o.path_csv, o.sides);
+      sides = std::move(mark.sides);
+      closed = mark.closed;
+    } else {
+      vision::PathShape shape;
+      if (o.shape == "line") {
+        shape = vision::line_shape(o.length_mm * 1e-3);
+      } else if (o.shape == "triangle") {
+        shape = vision::triangle_shape(o.side_mm * 1e-3);
+      } else if (o.shape == "polyline") {
+        shape = {parse_vertices(o.vertices_mm), false};
+      } else {
+        throw Error(fmt::format("--shape: expected line, triangle or polyline, got '{}'", o.shape));
+      }
+      sides = vision::sample_shape(shape, {o.wiggle_mm * 1e-3, o.wiggle_wavelength_mm * 1e-3, o.wiggle_decay_mm * 1e-3});
+      closed = shape.closed;
+    }
+    const cv::Size size = vision::rendered_size(sides, o.render);
+    width = size.width, height = size.height;
+    const auto scan = render_to(o, width, height, [&](const vision::RowSink& sink) {
+      return sink ? vision::render_scan(sides, closed, o.render, sink) : vision::render_scan(sides, closed, o.render);
+    });
+    truth = evaluation::to_json(scan.truth);
+  }
+  progress.finish();
+  truth["width_mm"] = evaluation::round_for_json(o.width_mm);
+  truth["dpi"] = o.render.dpi;
   truth["image"] = o.output;
-  truth["image_px"] = {scan.image.cols, scan.image.rows};
+  truth["image_px"] = {width, height};
   truth["seed"] = o.render.seed;
   if (!o.truth.empty()) core::write_file_atomically(o.truth, truth.dump(2) + "\n");
   if (o.json) {
     print_json(truth);
     return;
   }
-  fmt::print("{}: {} × {} px at {} dpi\n", o.output, scan.image.cols, scan.image.rows, scan.dpi);
+  fmt::print("{}: {} × {} px at {} dpi\n", o.output, width, height, o.render.dpi);
+  if (truth.contains("marks")) {
+    for (const auto& m : truth["marks"]) {
+      fmt::print("truth of mark {} (box x {:.2f} mm, y {:.2f} mm, {:.2f} × {:.2f} mm): length {:.6f} mm, deviation area {:.6f} mm²\n",
+                 m["index"].get<int>(), m["box_mm"][0].get<double>(), m["box_mm"][1].get<double>(), m["box_mm"][2].get<double>(),
+                 m["box_mm"][3].get<double>(), m["length_mm"].get<double>(), m["deviation_area_mm2"].get<double>());
+    }
+    return;
+  }
   fmt::print("truth: length {:.6f} mm, deviation area {:.6f} mm², max deviation {:.6f} mm, width {:.4f} mm\n",
              truth["length_mm"].get<double>(), truth["deviation_area_mm2"].get<double>(), truth["max_deviation_mm"].get<double>(),
              o.width_mm);
@@ -107,7 +155,7 @@ void run_render(RenderCliOptions& o) {
 
 void add_render_scan_command(CLI::App& app) {
   auto o = std::make_shared<RenderCliOptions>();
-  auto* cmd = app.add_subcommand("render-scan", "Draw a synthetic scan of a laser-marked path and print its ground truth");
+  auto* cmd = app.add_subcommand("render-scan", "Draw a synthetic scan of a laser-marked path (or a plate of marks) and print its ground truth");
   cmd->add_option("output", o->output, "Image to write (.png, .tif, .jpg); the resolution is stored in it")->required();
   cmd->add_option("--shape", o->shape, "line, triangle or polyline (with --vertices-mm)")->capture_default_str();
   cmd->add_option("--length-mm", o->length_mm, "Line length (mm)")->capture_default_str();
@@ -115,12 +163,14 @@ void add_render_scan_command(CLI::App& app) {
   cmd->add_option("--vertices-mm", o->vertices_mm, "Polyline vertices 'x,y x,y ...' (mm, y down)");
   cmd->add_option("--path-csv", o->path_csv, "Draw this path instead (CSV with x_mm, y_mm columns, in marking order)");
   cmd->add_option("--sides", o->sides, "Sides of the --path-csv path, for its ground truth")->capture_default_str();
+  cmd->add_option("--plate", o->plate, "Draw a page of marks and labels described in this JSON file (docs/vision.md)");
   cmd->add_option("--angle-deg", o->angle_deg, "Rotation of the path (deg, clockwise on screen)")->capture_default_str();
   cmd->add_option("--width-mm", o->width_mm, "Mark width = laser spot diameter (mm)")->capture_default_str();
   cmd->add_option("--margin-mm", o->margin_mm, "Paper around the mark (mm)")->capture_default_str();
   cmd->add_option("--wiggle-mm", o->wiggle_mm, "Initial amplitude of a decaying vibration (mm)")->capture_default_str();
   cmd->add_option("--wiggle-wavelength-mm", o->wiggle_wavelength_mm, "Its wavelength along the path (mm)")->capture_default_str();
   cmd->add_option("--wiggle-decay-mm", o->wiggle_decay_mm, "Its decay length along the path (mm)")->capture_default_str();
+  cmd->add_option("--corner-trim-mm", o->trim_mm, "Corner trim of the ground truth's metrics (mm), as for scan")->capture_default_str();
   cmd->add_option("--dpi", o->render.dpi, "Resolution (dpi)")->capture_default_str();
   cmd->add_option("--blur-px", o->render.blur_px, "Scanner blur sigma (px)")->capture_default_str();
   cmd->add_option("--noise", o->render.noise, "Pixel noise sigma (fraction of full scale)")->capture_default_str();
@@ -132,6 +182,7 @@ void add_render_scan_command(CLI::App& app) {
   cmd->add_option("--seed", o->render.seed, "Seed of the noise, texture and specks")->capture_default_str();
   cmd->add_option("--truth", o->truth, "Also write the ground truth JSON to this file");
   cmd->add_flag("--json", o->json, "Print the ground truth as one JSON object");
+  cmd->add_flag("--quiet", o->quiet, "No progress bar (it is shown only on a terminal anyway)");
   cmd->callback([o] { run_render(*o); });
 }
 

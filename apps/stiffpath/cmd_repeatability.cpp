@@ -64,7 +64,7 @@ void print_text(const RepeatabilityReport& r) {
 }
 
 void run(const RepeatabilityCli& o) {
-  const auto report = analyse_repeatability(load_trials(o.file));
+  const auto report = analyse_repeatability(load_trials(o.file == "thesis" ? thesis_repeatability() : core::parse_data_ref(o.file)));
   o.json ? print_json(to_json(report, o.file)) : print_text(report);
 }
 }  // namespace

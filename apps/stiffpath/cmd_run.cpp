@@ -8,7 +8,8 @@
 
 #include "commands.hpp"
 #include "motion_flags.hpp"
-#include "stiffpath/compensation/job.hpp"
+#include "robot_flags.hpp"
+#include "stiffpath/job/job.hpp"
 #include "stiffpath/compliance/model_factory.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/core/units.hpp"
@@ -18,8 +19,8 @@ namespace stiffpath::cli {
 namespace {
 struct RunArgs {
   std::string job;
-  std::string mechanism = "oc-gu";
-  std::string model;  // default: the mechanism's built-in thesis model
+  std::string robot;
+  compliance::ModelRequest request;  // default: the robot's own model
   bool no_compensation = false;
   double gain = 1.0;
   std::string accel_source = "analytic";
@@ -41,7 +42,7 @@ int count_lines(const std::string& path) {
 }
 
 // A progress bar on stderr for long jobs when stderr is a terminal.
-compensation::Progress progress_bar(const std::string& job) {
+job::Progress progress_bar(const std::string& job) {
   if (!::isatty(2)) return {};
   const int total = count_lines(job);
   if (total < 2000) return {};
@@ -54,30 +55,34 @@ compensation::Progress progress_bar(const std::string& job) {
 }
 
 void run(const RunArgs& a) {
-  const auto spec = kinematics::load_mechanism(a.mechanism);
-  const std::string model_name = a.model.empty() ? (spec.build == "OC" ? "thesis-oc" : "thesis-sc") : a.model;
-  auto loaded = compliance::load_model(model_name);
-  if (!a.outside.empty()) loaded.model->set_outside_policy(compliance::parse_outside_policy(a.outside));
-  const std::shared_ptr<const compliance::Model> model(loaded.model.release());
-  const compensation::Compensator compensator(spec, model, {a.gain, !a.no_compensation, true});
-  const motion::PlanOptions options = plan_options(a.motion);
-  const auto acceleration = compensation::parse_acceleration_source(a.accel_source);
+  const auto robot = load_robot_flag(a.robot);
+  const bool compensating = !a.no_compensation && a.gain != 0.0;
+  // A robot with no compliance data yet can still run without compensation (reach and limits only).
+  const bool has_data = !robot.compliance.table.empty() || !robot.compliance.model.empty() || !a.request.model.empty();
+  std::shared_ptr<const compliance::Model> model;
+  std::string model_name = "none";
+  if (compensating || has_data) {
+    auto loaded = compliance::load_robot_model(robot, a.request);
+    if (!a.outside.empty()) loaded.model->set_outside_policy(compliance::parse_outside_policy(a.outside));
+    model_name = loaded.label;
+    model.reset(loaded.model.release());
+  }
+  const compensation::Compensator compensator(robot, model, {a.gain, !a.no_compensation, true});
+  const motion::PlanOptions options = plan_options(a.motion, robot);
+  const auto acceleration = job::parse_acceleration_source(a.accel_source);
 
   motion::TrajectoryStream stream(a.job, options);
-  std::unique_ptr<compensation::JointWriter> writer;
+  std::unique_ptr<job::JointWriter> writer;
   if (!a.output.empty()) {
-    writer = compensation::make_joint_writer(compensation::parse_output_format(a.format), a.output, options.rate_hz,
-                                             spec.name);
+    writer = job::make_joint_writer(job::parse_output_format(a.format), a.output, options.rate_hz, robot.name);
   }
   const auto progress = progress_bar(a.job);
-  const compensation::JobSummary s =
-      compensation::run_job(stream, compensator, writer.get(), a.job, options.rate_hz, acceleration, progress);
+  const job::JobSummary s = job::run_job(stream, compensator, writer.get(), a.job, options.rate_hz, acceleration, progress);
   if (progress) std::fprintf(stderr, "\n");
 
-  const bool compensating = !a.no_compensation && a.gain != 0.0;
   if (a.json) {
     print_json({{"job", a.job},
-                {"mechanism", spec.name},
+                {"robot", robot.name},
                 {"model", model_name},
                 {"compensation", compensating},
                 {"gain", a.no_compensation ? 0.0 : a.gain},
@@ -94,7 +99,7 @@ void run(const RunArgs& a) {
                 {"output", a.output.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.output)}});
     return;
   }
-  fmt::print("{}: {} on {} with {}{}\n", a.job, compensating ? "compensated" : "not compensated", spec.name,
+  fmt::print("{}: {} on {} with {}{}\n", a.job, compensating ? "compensated" : "not compensated", robot.name,
              model_name, compensating && a.gain != 1.0 ? fmt::format(" (gain {:g})", a.gain) : "");
   fmt::print("  {} samples at {:g} Hz, duration {:.4f} s\n", s.samples, options.rate_hz, s.duration_s);
   fmt::print("  peak D'Alembert force {:.1f} N, predicted deflection {:.1f} um, correction {:.1f} um\n", s.peak_force_N,
@@ -102,8 +107,8 @@ void run(const RunArgs& a) {
   fmt::print("  peak joint velocity {:.2f} rad/s, acceleration {:.1f} rad/s^2\n", s.peak_joint_velocity_rad_s,
              s.peak_joint_acceleration_rad_s2);
   if (s.samples_outside_grid > 0) {
-    fmt::print("  {} samples outside the compliance model's grid ({})\n", s.samples_outside_grid,
-               compliance::to_string(model->outside_policy()));
+    fmt::print("  {} samples outside the compliance model's measured region ({})\n", s.samples_outside_grid,
+               model ? compliance::to_string(model->outside_policy()) : "no model");
   }
   if (!a.output.empty()) fmt::print("  wrote {}\n", a.output);
 }
@@ -113,14 +118,16 @@ void add_run_command(CLI::App& app) {
   auto a = std::make_shared<RunArgs>();
   auto* cmd = app.add_subcommand("run", "The main job: G-code -> compliance-compensated joint commands (fig. 4.3)");
   cmd->add_option("job", a->job, "G-code program")->required();
-  cmd->add_option("--mechanism", a->mechanism, "Preset (oc-gu, oc-gl, sc-gu, sc-gl) or JSON file")->capture_default_str();
-  cmd->add_option("--model", a->model, "Compliance model file or built-in (default: thesis-oc / thesis-sc)");
+  add_robot_flag(cmd, a->robot);
+  add_model_flags(cmd, a->request);
   cmd->add_flag("--no-compensation", a->no_compensation, "Plan and convert to joints without correcting");
   cmd->add_option("--gain", a->gain, "Compensation gain k in p_cmd = p - k*delta")->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_option("--accel-source", a->accel_source, "analytic (profile) or numeric (thesis: 2nd difference)")
       ->capture_default_str();
-  cmd->add_option("--outside", a->outside, "Outside the model's grid: clamp, extrapolate or error (default: model's)");
+  cmd->add_option("--outside", a->outside,
+                  "A sample more than 1 mm outside the model's measured region: error (refuse), clamp or extrapolate "
+                  "(default: the model's, error unless it was fitted otherwise)");
   cmd->add_option("-o,--output", a->output, "Joint trajectory file (written atomically)");
   cmd->add_option("--format", a->format, "csv or bin")->capture_default_str();
   cmd->add_flag("--json", a->json, "Print the summary as JSON");

@@ -1,8 +1,11 @@
-// `stiffpath scan`: measures a laser-marked path on a scanned image (thesis §4.6) and prints its metrics.
+// `stiffpath scan`: measures a laser-marked path on a scanned image (thesis §4.6), or every mark of a plate, and prints the metrics.
+#include <cmath>
 #include <fmt/format.h>
 #include <memory>
 
 #include "commands.hpp"
+#include "progress.hpp"
+#include "stiffpath/core/csv.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/vision/image_io.hpp"
 #include "stiffpath/vision/overlay.hpp"
@@ -13,15 +16,17 @@ namespace stiffpath::cli {
 namespace {
 
 struct ScanCliOptions {
-  std::string image, shape = "line", overlay;
-  double dpi = 1200, cutoff_mm = 1.0, trim_mm = 1.0;
-  bool json = false;
+  std::string image, shape = "line", overlay, roi;
+  double dpi = 1200, cutoff_mm = 1.0, trim_mm = 1.0, min_mark_mm = 10.0;
+  bool json = false, all_marks = false, quiet = false;
   CLI::Option* dpi_option = nullptr;
+  CLI::Option* shape_option = nullptr;
 };
 
 int parse_sides(const std::string& shape) {
   if (shape == "line") return 1;
   if (shape == "triangle") return 3;
+  if (shape == "any") return 0;
   if (shape.rfind("polyline:", 0) == 0) {
     const std::string n = shape.substr(9);
     if (!n.empty() && n.size() <= 2 && n.find_first_not_of("0123456789") == std::string::npos) {
@@ -29,49 +34,137 @@ int parse_sides(const std::string& shape) {
       if (sides >= 1 && sides <= 64) return sides;
     }
   }
-  throw Error(fmt::format("--shape: expected line, triangle or polyline:N with N in 1..64, got '{}'", shape));
+  throw Error(fmt::format("--shape: expected line, triangle, polyline:N with N in 1..64, or any, got '{}'", shape));
 }
 
-void run_scan(const ScanCliOptions& o) {
-  vision::ScanOptions options;
-  options.sides = parse_sides(o.shape);
-  if (!(o.cutoff_mm >= 0.0) || !(o.trim_mm >= 0.0)) throw Error("--spline-cutoff-mm and --corner-trim-mm must be >= 0");
-  options.metrics.smoothing_cutoff_m = o.cutoff_mm * 1e-3;
-  options.metrics.corner_trim_m = o.trim_mm * 1e-3;
-  options.label = o.image;
-  const auto dpi = o.dpi_option->count() > 0 ? std::optional<double>(o.dpi) : std::nullopt;
-  const vision::ScanImage scan = vision::load_scan(o.image, dpi);
-  vision::ScanResult result = vision::analyse_scan(scan.grey, scan.dpi, options);
-  result.warnings.insert(result.warnings.begin(), scan.warnings.begin(), scan.warnings.end());
-  if (!o.overlay.empty()) vision::write_image(o.overlay, vision::draw_overlay(scan.grey, result), scan.dpi);
+// "--roi X,Y,W,H" in mm from the image's top-left corner, or with a unit suffix "…mm" / "…px".
+struct Roi {
+  double v[4];
+  bool px;
+};
 
-  nlohmann::json out = vision::to_json(result);
-  out["image"] = o.image;
-  out["shape"] = o.shape;
-  out["dpi_source"] = scan.dpi_source;
-  if (o.json) {
-    print_json(out);
-    return;
+Roi parse_roi(const std::string& text) {
+  std::string body = text;
+  bool px = false;
+  if (body.size() > 2 && (body.ends_with("px") || body.ends_with("mm"))) {
+    px = body.ends_with("px");
+    body.resize(body.size() - 2);
   }
-  fmt::print("{}: {} × {} px at {} dpi ({})\n", o.image, result.width_px, result.height_px, result.dpi, scan.dpi_source);
-  fmt::print("length {:.4f} mm, deviation area {:.4f} mm², max deviation {:.4f} mm, straightness {:.4f} mm, width {:.4f} mm\n",
+  Roi roi{{0, 0, 0, 0}, px};
+  std::size_t start = 0;
+  for (int i = 0; i < 4; ++i) {
+    const std::size_t comma = body.find(',', start);
+    if ((i < 3) != (comma != std::string::npos)) throw Error(fmt::format("--roi: expected X,Y,W,H (mm, or px with a px suffix), got '{}'", text));
+    const std::string field = body.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    const auto value = core::parse_double(field);
+    if (!value) throw Error(fmt::format("--roi: expected X,Y,W,H (mm, or px with a px suffix), got '{}': '{}' is not a number", text, field));
+    if (*value < 0 || (i >= 2 && *value <= 0)) throw Error(fmt::format("--roi: '{}': X and Y must be numbers >= 0, W and H numbers > 0", text));
+    roi.v[i] = *value;
+    start = comma + 1;
+  }
+  return roi;
+}
+
+cv::Rect roi_pixels(const Roi& roi, const std::string& text, const vision::ScanImage& scan) {
+  const double per = roi.px ? 1.0 : scan.dpi / 25.4;
+  const double x0 = std::round(roi.v[0] * per), y0 = std::round(roi.v[1] * per);
+  const double x1 = std::round((roi.v[0] + roi.v[2]) * per), y1 = std::round((roi.v[1] + roi.v[3]) * per);
+  if (x1 > scan.grey.cols || y1 > scan.grey.rows) {
+    throw Error(fmt::format("--roi {}: reaches beyond the image ({} × {} px, {:.1f} × {:.1f} mm at {} dpi)", text, scan.grey.cols,
+                            scan.grey.rows, scan.grey.cols * 25.4 / scan.dpi, scan.grey.rows * 25.4 / scan.dpi, scan.dpi));
+  }
+  return {static_cast<int>(x0), static_cast<int>(y0), static_cast<int>(x1 - x0), static_cast<int>(y1 - y0)};
+}
+
+void print_result(const nlohmann::json& out, const std::string& indent) {
+  fmt::print("{}length {:.4f} mm, deviation area {:.4f} mm², max deviation {:.4f} mm, straightness {:.4f} mm, width {:.4f} mm\n", indent,
              out["length_mm"].get<double>(), out["deviation_area_mm2"].get<double>(), out["max_deviation_mm"].get<double>(),
              out["straightness_mm"].get<double>(), out["width_mm"].get<double>());
   if (out.contains("sides")) {
     for (std::size_t k = 0; k < out["sides"].size(); ++k) {
       const auto& s = out["sides"][k];
-      fmt::print("  side {}: length {:.4f} mm, area {:.4f} mm², max deviation {:.4f} mm, width {:.4f} mm\n", k + 1,
+      fmt::print("{}  side {}: length {:.4f} mm, area {:.4f} mm², max deviation {:.4f} mm, width {:.4f} mm\n", indent, k + 1,
                  s["length_mm"].get<double>(), s["deviation_area_mm2"].get<double>(), s["max_deviation_mm"].get<double>(),
                  s["width_mm"].get<double>());
     }
   }
   if (out.contains("corners")) {
     for (const auto& c : out["corners"]) {
-      fmt::print("  corner at x = {:.4f} mm, y = {:.4f} mm, angle {:.3f}°\n", c["x_mm"].get<double>(), c["y_mm"].get<double>(),
+      fmt::print("{}  corner at x = {:.4f} mm, y = {:.4f} mm, angle {:.3f}°\n", indent, c["x_mm"].get<double>(), c["y_mm"].get<double>(),
                  c["angle_deg"].get<double>());
     }
   }
-  for (const auto& w : result.warnings) fmt::print("warning: {}\n", w);
+  for (const auto& w : out["warnings"]) fmt::print("{}warning: {}\n", indent, w.get<std::string>());
+}
+
+void run_scan(const ScanCliOptions& o) {
+  vision::ScanOptions options;
+  const bool shape_given = o.shape_option->count() > 0;
+  options.sides = parse_sides(o.all_marks && !shape_given ? "any" : o.shape);
+  if (o.shape == "triangle") options.metrics.closure = evaluation::Closure::closed;
+  if (o.shape == "line" && shape_given) options.metrics.closure = evaluation::Closure::open;
+  if (!(o.cutoff_mm >= 0.0) || !(o.trim_mm >= 0.0)) throw Error("--spline-cutoff-mm and --corner-trim-mm must be >= 0");
+  if (!(o.min_mark_mm > 0.0) || !std::isfinite(o.min_mark_mm)) throw Error("--min-mark-mm must be positive");
+  options.metrics.smoothing_cutoff_m = o.cutoff_mm * 1e-3;
+  options.metrics.corner_trim_m = o.trim_mm * 1e-3;
+  options.min_plate_mark_m = o.min_mark_mm * 1e-3;
+  options.label = o.image;
+  const auto roi = o.roi.empty() ? std::optional<Roi>{} : parse_roi(o.roi);
+  const auto dpi = o.dpi_option->count() > 0 ? std::optional<double>(o.dpi) : std::nullopt;
+  Progress progress("scan", o.quiet);
+  progress.update(0.0, "reading the image");
+  const vision::ScanImage scan = vision::load_scan(o.image, dpi);
+  if (roi) options.roi_px = roi_pixels(*roi, o.roi, scan);
+  options.progress = progress.callback();
+
+  nlohmann::json out;
+  if (o.all_marks) {
+    const vision::PlateResult plate = vision::analyse_plate(scan.grey, scan.dpi, options);
+    progress.finish();
+    if (!o.overlay.empty()) vision::write_image(o.overlay, vision::draw_plate_overlay(scan.grey, plate), scan.dpi);
+    out = vision::to_json(plate);
+    out["warnings"] = scan.warnings;
+  } else {
+    vision::ScanResult result = vision::analyse_scan(scan.grey, scan.dpi, options);
+    progress.finish();
+    result.warnings.insert(result.warnings.begin(), scan.warnings.begin(), scan.warnings.end());
+    if (!o.overlay.empty()) vision::write_image(o.overlay, vision::draw_overlay(scan.grey, result), scan.dpi);
+    out = vision::to_json(result);
+    out["shape"] = vision::shape_name(result);
+  }
+  out["image"] = o.image;
+  out["dpi_source"] = scan.dpi_source;
+  if (!o.roi.empty()) {
+    const cv::Rect& r = options.roi_px;
+    const double mm = 25.4 / scan.dpi;
+    out["roi_mm"] = {r.x * mm, r.y * mm, r.width * mm, r.height * mm};
+  }
+  if (o.json) {
+    print_json(out);
+    return;
+  }
+  fmt::print("{}: {} × {} px at {} dpi ({})\n", o.image, scan.grey.cols, scan.grey.rows, scan.dpi, scan.dpi_source);
+  if (!o.all_marks) {
+    print_result(out, "");
+    return;
+  }
+  for (const auto& w : out["warnings"]) fmt::print("warning: {}\n", w.get<std::string>());
+  int letters = 0;
+  for (const auto& l : out["labels"]) letters += l["features"].get<int>();
+  fmt::print("{} marks measured, {} skipped; {} label areas ({} features smaller than {} mm) not measured; {} specks ignored\n",
+             out["measured"].get<int>(), out["skipped"].get<int>(), out["labels"].size(), letters, o.min_mark_mm,
+             out["specks_ignored"].get<int>());
+  for (const auto& m : out["marks"]) {
+    const auto& b = m["box_mm"];
+    fmt::print("mark {} at x {:.2f}..{:.2f} mm, y {:.2f}..{:.2f} mm: ", m["index"].get<int>(), b[0].get<double>(),
+               b[0].get<double>() + b[2].get<double>(), b[1].get<double>(), b[1].get<double>() + b[3].get<double>());
+    if (m["status"] == "measured") {
+      fmt::print("{}\n", m["shape"].get<std::string>());
+      print_result(m, "  ");
+    } else {
+      fmt::print("skipped: {}\n", m["reason"].get<std::string>());
+    }
+  }
 }
 
 }  // namespace
@@ -81,11 +174,15 @@ void add_scan_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("scan", "Measure a laser-marked path on a scan (thesis 4.6): length, deviation area, width");
   cmd->add_option("image", opts->image, "Scan (PNG, TIFF or JPEG; grey or colour; 8 or 16 bit)")->required();
   opts->dpi_option = cmd->add_option("--dpi", opts->dpi, "Resolution (dpi); overrides the file's metadata (default: metadata, else 1200)");
-  cmd->add_option("--shape", opts->shape, "line, triangle or polyline:N")->capture_default_str();
+  opts->shape_option = cmd->add_option("--shape", opts->shape, "line, triangle, polyline:N or any (default line; any with --all-marks)");
+  cmd->add_option("--roi", opts->roi, "Measure only the region X,Y,W,H: mm from the image's top-left corner, or pixels with a px suffix (10,20,80,30px)");
+  cmd->add_flag("--all-marks", opts->all_marks, "Measure every mark on the scan (a plate): one result per mark with its bounding box");
+  cmd->add_option("--min-mark-mm", opts->min_mark_mm, "With --all-marks: smaller dark features are listed as labels, not measured (mm)")->capture_default_str();
   cmd->add_option("--overlay", opts->overlay, "Write a picture of the detected centre line, fitted line and spline (PNG)");
   cmd->add_option("--spline-cutoff-mm", opts->cutoff_mm, "Smoothing spline cutoff wavelength (mm)")->capture_default_str();
   cmd->add_option("--corner-trim-mm", opts->trim_mm, "Part of each side next to a corner left out (mm)")->capture_default_str();
   cmd->add_flag("--json", opts->json, "Print one JSON object with units in its keys");
+  cmd->add_flag("--quiet", opts->quiet, "No progress bar (it is shown only on a terminal anyway)");
   cmd->callback([opts] { run_scan(*opts); });
 }
 

@@ -1,11 +1,13 @@
 // `stiffpath simulate`: a joint trajectory from `stiffpath run` through the digital twin, measured like the thesis's marks.
+#include <algorithm>
 #include <fmt/format.h>
 #include <memory>
 
 #include "commands.hpp"
-#include "stiffpath/compensation/joint_reader.hpp"
+#include "robot_flags.hpp"
+#include "stiffpath/core/error.hpp"
+#include "stiffpath/job/joint_reader.hpp"
 #include "stiffpath/core/atomic_file.hpp"
-#include "stiffpath/kinematics/mechanism_spec.hpp"
 #include "stiffpath/simulation/run_metrics.hpp"
 #include "stiffpath/simulation/twin_models.hpp"
 
@@ -14,7 +16,7 @@ namespace stiffpath::cli {
 namespace {
 struct SimulateArgs {
   std::string joints;
-  std::string mechanism;  // default: the binary file's mechanism, else oc-gu
+  std::string robot;  // default: the binary file's robot (a preset), else oc-gu
   int sides = 1;
   double perturbation = simulation::TrueComplianceOptions{}.perturbation;
   std::uint64_t seed = simulation::TrueComplianceOptions{}.seed;
@@ -34,12 +36,31 @@ void write_marks(const std::string& path, const simulation::SimulationResult& ru
 }
 
 void simulate(const SimulateArgs& a) {
-  compensation::JointReader reader(a.joints);
-  const std::string name = !a.mechanism.empty() ? a.mechanism : !reader.mechanism().empty() ? reader.mechanism() : "oc-gu";
-  const auto spec = kinematics::load_mechanism(name);
-  const auto truth = simulation::make_true_compliance(spec.build, {"", a.perturbation, a.seed});
+  job::JointReader reader(a.joints);
+  const std::string written_for = reader.mechanism();
+  kinematics::Robot robot;
+  if (!a.robot.empty()) {
+    robot = kinematics::load_robot(a.robot);
+    if (!written_for.empty() && written_for != robot.name) {
+      throw Error(SourceLocation{a.joints}, fmt::format("the joint file was written for robot '{}', not for '{}' "
+                                                        "(named by --robot {})",
+                                                        written_for, robot.name, a.robot));
+    }
+  } else if (!written_for.empty()) {
+    const auto presets = kinematics::preset_names();
+    if (std::find(presets.begin(), presets.end(), written_for) == presets.end()) {
+      throw Error(SourceLocation{a.joints},
+                  fmt::format("the joint file was written for robot '{}', which is not a preset: name its robot file "
+                              "with --robot",
+                              written_for));
+    }
+    robot = kinematics::load_robot(written_for);
+  } else {
+    robot = load_robot_flag("");
+  }
+  const auto truth = simulation::make_true_compliance(robot, {"", a.perturbation, a.seed});
   const simulation::SimulationResult run =
-      simulation::simulate([&reader] { return reader.next(); }, spec, truth, a.sim);
+      simulation::simulate([&reader] { return reader.next(); }, robot, truth, a.sim);
   const simulation::RunMetrics m = simulation::measure_run(run, a.sides);
   if (!a.marks_csv.empty()) write_marks(a.marks_csv, run);
   const auto corner_metric = [&m](double value_m) -> nlohmann::json {
@@ -47,7 +68,7 @@ void simulate(const SimulateArgs& a) {
   };
   if (a.json) {
     print_json({{"joints", a.joints},
-                {"mechanism", spec.name},
+                {"robot", robot.name},
                 {"duration_s", tidy(run.duration_s)},
                 {"marked_points", run.marked.size()},
                 {"length_mm", tidy(m.length_m * 1e3)},
@@ -63,7 +84,7 @@ void simulate(const SimulateArgs& a) {
                 {"peak_deflection_mm", tidy(m.peak_deflection_m * 1e3)}});
     return;
   }
-  fmt::print("{}: simulated {:.4f} s on {} (C_true perturbation {:g}, seed {})\n", a.joints, run.duration_s, spec.name,
+  fmt::print("{}: simulated {:.4f} s on {} (C_true perturbation {:g}, seed {})\n", a.joints, run.duration_s, robot.name,
              a.perturbation, a.seed);
   fmt::print("  length {:.4f} mm (commanded {:.4f} mm, error {:+.4f} mm)\n", m.length_m * 1e3,
              m.commanded_length_m * 1e3, m.length_error_m * 1e3);
@@ -82,7 +103,8 @@ void add_simulate_command(CLI::App& app) {
   auto a = std::make_shared<SimulateArgs>();
   auto* cmd = app.add_subcommand("simulate", "Run a joint trajectory (from `run`) on the digital twin and measure the mark");
   cmd->add_option("joints", a->joints, "Joint trajectory file (CSV or binary)")->required();
-  cmd->add_option("--mechanism", a->mechanism, "Preset or JSON file (default: the binary file's, else oc-gu)");
+  add_robot_flag(cmd, a->robot)->description("Robot (preset or file) the joints were made for (default: the binary "
+                                            "file's preset, else oc-gu); its data give C_true");
   cmd->add_option("--sides", a->sides, "Straight sides of the path: 1 (line) or 3 (triangle)")
       ->check(CLI::Range(1, 12))->capture_default_str();
   cmd->add_option("--perturbation", a->perturbation, "Relative perturbation of C_true")

@@ -27,10 +27,12 @@ void add_experiment_command(CLI::App& app);
 
 //! Prints a JSON document on stdout (two-space indent, newline).
 void print_json(const nlohmann::json& document);
-//! "oc", "OC", "oc-gu", a mechanism file … → the build name used in data tables ("OC" / "SC").
-std::string resolve_build(const std::string& mechanism);
 
 //! Rounds for display in JSON so that outputs are stable (12 significant digits).
 double tidy(double value);
+
+//! With --json, this subcommand's errors are printed as one JSON document on stderr
+//! ({"errors": [{"file", "line", "column", "message"}], "omitted": N}) instead of "error: …" lines.
+void enable_json_errors(const CLI::App* command);
 
 }  // namespace stiffpath::cli

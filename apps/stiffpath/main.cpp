@@ -2,10 +2,12 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <set>
+#include <sstream>
 
 #include "commands.hpp"
 #include "stiffpath/core/error.hpp"
-#include "stiffpath/kinematics/mechanism_spec.hpp"
+#include "stiffpath/motion/gcode_diagnostics.hpp"
 
 namespace stiffpath::cli {
 
@@ -18,11 +20,51 @@ double tidy(double value) {
   return std::strtod(buffer, nullptr);
 }
 
-std::string resolve_build(const std::string& mechanism) {
-  if (mechanism == "oc" || mechanism == "OC") return "OC";
-  if (mechanism == "sc" || mechanism == "SC") return "SC";
-  return kinematics::load_mechanism(mechanism).build;
+namespace {
+
+std::set<const CLI::App*>& json_error_commands() {
+  static std::set<const CLI::App*> commands;
+  return commands;
 }
+
+// Whether a subcommand that ran (or one of its own) prints its errors as JSON and was given --json.
+bool json_requested(const CLI::App& app) {
+  for (const CLI::App* sub : app.get_subcommands()) {
+    const CLI::Option* json = sub->get_option_no_throw("--json");
+    if ((json_error_commands().contains(sub) && json != nullptr && json->count() > 0) || json_requested(*sub)) return true;
+  }
+  return false;
+}
+
+nlohmann::json error_json(const stiffpath::Error& e) {
+  const auto& w = e.where();
+  return {{"file", w.file.empty() ? nlohmann::json(nullptr) : nlohmann::json(w.file)},
+          {"line", w.line > 0 ? nlohmann::json(w.line) : nlohmann::json(nullptr)},
+          {"column", w.column > 0 ? nlohmann::json(w.column) : nlohmann::json(nullptr)},
+          {"message", e.message()}};
+}
+
+// Bad input: "error: " before each line of the message, or with --json one document on stderr:
+// {"errors": [{"file", "line", "column", "message"}, …], "omitted": N}.
+void report(const CLI::App& app, const stiffpath::Error& e) {
+  const auto* all = dynamic_cast<const stiffpath::motion::GcodeErrors*>(&e);
+  if (json_requested(app)) {
+    nlohmann::json errors = nlohmann::json::array();
+    if (all != nullptr) {
+      for (const auto& one : all->errors()) errors.push_back(error_json(one));
+    } else {
+      errors.push_back(error_json(e));
+    }
+    std::cerr << nlohmann::json{{"errors", errors}, {"omitted", all != nullptr ? all->omitted() : 0}}.dump(2) << '\n';
+    return;
+  }
+  std::istringstream lines(e.what());
+  for (std::string line; std::getline(lines, line);) std::cerr << "error: " << line << '\n';
+}
+
+}  // namespace
+
+void enable_json_errors(const CLI::App* command) { json_error_commands().insert(command); }
 
 }  // namespace stiffpath::cli
 
@@ -53,7 +95,7 @@ int main(int argc, char** argv) {
     const int code = app.exit(e);
     return code == 0 ? 0 : 2;
   } catch (const stiffpath::Error& e) {
-    std::cerr << "error: " << e.what() << '\n';
+    stiffpath::cli::report(app, e);
     return 2;
   } catch (const std::exception& e) {
     std::cerr << "internal error: " << e.what() << '\n';

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "stiffpath/kinematics/robot.hpp"
 #include "stiffpath/motion/trajectory_stream.hpp"
 
 namespace stiffpath::cli {
@@ -21,12 +22,22 @@ struct MotionFlags {
   double blend_tolerance_mm = 0.01;
   double junction_time_ms = 0.5;
   std::size_t lookahead = 0;
+  bool strict = false;
+  std::string dwell_p_units = "s";
+  double s_max = motion::default_s_max;
+  std::string program_stop = "pause";
+  std::string block_delete = "run";
 };
 
 //! Registers --accel, --jerk, --max-velocity-mm-s, --rate, --work-offset-mm, --start-mm,
-//! --blend-tolerance-mm, --junction-time-ms and --lookahead on `cmd`.
+//! --blend-tolerance-mm, --junction-time-ms, --lookahead and the dialect flags --strict,
+//! --dwell-p-units, --s-max, --program-stop and --block-delete on `cmd`.
 void add_motion_flags(CLI::App* cmd, MotionFlags& flags);
-//! The planner's options from the flags (throws stiffpath::Error for a bad --accel).
-motion::PlanOptions plan_options(const MotionFlags& flags);
+//! The planner's options from the flags. Every number is checked against its documented range
+//! (docs/motion.md); a bad one throws stiffpath::Error "--flag: reason, got value". The G-code
+//! warnings are printed to stderr, one line per kind, when the program has been read.
+motion::PlanOptions plan_options(const MotionFlags& flags, const kinematics::Robot& robot);
+//! Prints the summarised warnings as "warning: file:line: message" lines on stderr.
+void print_gcode_warnings(const std::string& file, const std::vector<motion::GcodeWarning>& warnings);
 
 }  // namespace stiffpath::cli

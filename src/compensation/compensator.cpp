@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <span>
 
 #include "stiffpath/core/error.hpp"
@@ -13,7 +14,7 @@ const char* describe(Status status) noexcept {
   switch (status) {
     case Status::ok: return "ok";
     case Status::not_finite: return "input sample is not finite";
-    case Status::outside_grid: return "point outside the compliance model's grid (policy 'error')";
+    case Status::outside_grid: return "point outside the compliance model's measured region (policy 'error')";
     case Status::unreachable: return "corrected target is not reachable with the mechanism's singularity margin";
     case Status::joint_position: return "joint position limit exceeded";
     case Status::joint_velocity: return "joint velocity limit exceeded";
@@ -43,13 +44,16 @@ Mat2 inverse(const Mat2& M) noexcept {
 }
 }  // namespace
 
-Compensator::Compensator(const kinematics::MechanismSpec& mechanism, std::shared_ptr<const compliance::Model> model,
+Compensator::Compensator(const kinematics::Robot& robot, std::shared_ptr<const compliance::Model> model,
                          CompensatorOptions options)
-    : spec_(mechanism), robot_(mechanism.five_bar()), model_(std::move(model)), options_(options) {
-  if (!model_) throw Error("compensator needs a compliance model");
+    : spec_(robot), five_bar_(robot.five_bar()), model_(std::move(model)), options_(options) {
   if (!std::isfinite(options_.gain) || options_.gain < 0.0) throw Error("compensation gain must be finite and >= 0");
   effective_gain_ = options_.enabled ? options_.gain : 0.0;
-  bounds_ = model_->bounds();
+  if (!model_ && effective_gain_ != 0.0) throw Error("compensator needs a compliance model");
+  // Without a model (no compensation asked for) nothing is outside and nothing is predicted.
+  const double inf = std::numeric_limits<double>::infinity();
+  bounds_ = model_ ? model_->bounds() : compliance::GridBounds{-inf, inf, -inf, inf};
+  allowed_ = bounds_.grown(compliance::kOutsideMargin_m);
 }
 
 JointCommand Compensator::step(const TaskSample& s) const noexcept {
@@ -68,7 +72,8 @@ JointCommand Compensator::step(const TaskSample& s) const noexcept {
   const double k = effective_gain_;
   c.force_N = -m * s.acceleration_m_s2;
   c.outside_grid = !bounds_.contains(s.position_m);
-  if (c.outside_grid && model_->outside_policy() == compliance::OutsidePolicy::error && k != 0.0) {
+  if (c.outside_grid && k != 0.0 && model_->outside_policy() == compliance::OutsidePolicy::error &&
+      !allowed_.contains(s.position_m)) {
     c.status = Status::outside_grid;
     return c;
   }
@@ -87,10 +92,14 @@ JointCommand Compensator::step(const TaskSample& s) const noexcept {
     points[1] = s.position_m + h * s.velocity_m_s + drift;
     points[2] = s.position_m - h * s.velocity_m_s + drift;
   }
-  model_->compliance_batch(std::span<const Vec2>(points.data(), k != 0.0 ? 3 : 1), Cs);
+  if (model_) {
+    model_->compliance_batch(std::span<const Vec2>(points.data(), k != 0.0 ? 3 : 1), Cs);
+  } else {
+    Cs[0].setZero();
+  }
   const Mat2& C = Cs[0];
   c.deflection_m = times(C, c.force_N);
-  if (model_->zero_force() == compliance::ZeroForce::thesis_raw) c.deflection_m += model_->offset(s.position_m);
+  if (model_ && model_->zero_force() == compliance::ZeroForce::thesis_raw) c.deflection_m += model_->offset(s.position_m);
   c.command_m = s.position_m - k * c.deflection_m;
 
   Vec2 pd_cmd = s.velocity_m_s, pdd_cmd = s.acceleration_m_s2;
@@ -104,19 +113,19 @@ JointCommand Compensator::step(const TaskSample& s) const noexcept {
     pdd_cmd += k * m * (times(C, s.snap_m_s4) + 2.0 * times(C_dot, s.jerk_m_s3) + times(C_ddot, s.acceleration_m_s2));
   }
 
-  Mat2 J;
-  const kinematics::InverseResult ik = robot_.solve_inverse(c.command_m, J);
+  kinematics::InverseFrame frame;
+  const kinematics::InverseResult ik = five_bar_.solve_inverse(c.command_m, frame);
   if (ik.status != kinematics::Reach::ok) {
     c.status = Status::unreachable;
     return c;
   }
   c.q_rad = ik.q;
-  const Mat2 J_inv = inverse(J);
+  const Mat2 J_inv = inverse(frame.jacobian);
   c.qd_rad_s = times(J_inv, pd_cmd);
-  c.qdd_rad_s2 = times(J_inv, pdd_cmd - times(kinematics::FiveBar::jacobian_dot_from(J, c.qd_rad_s), c.qd_rad_s));
+  c.qdd_rad_s2 = times(J_inv, pdd_cmd - times(five_bar_.jacobian_dot(frame, c.qd_rad_s), c.qd_rad_s));
   if (options_.check_limits) {
     int joint = -1;
-    switch (kinematics::check_joint_limits(spec_, c.q_rad, c.qd_rad_s, c.qdd_rad_s2, joint)) {
+    switch (kinematics::check_joint_limits(spec_.joints, c.q_rad, c.qd_rad_s, c.qdd_rad_s2, joint)) {
       case kinematics::JointCheck::ok: break;
       case kinematics::JointCheck::position: c.status = Status::joint_position; break;
       case kinematics::JointCheck::velocity: c.status = Status::joint_velocity; break;

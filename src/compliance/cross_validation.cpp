@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
+
+#include "stiffpath/core/error.hpp"
 
 #include "stiffpath/compliance/grid.hpp"
 #include "stiffpath/compliance/grid_model.hpp"
@@ -34,7 +37,7 @@ std::vector<const PointSample*> reference_samples(const PointSamples& point) {
 }
 
 CvMethod evaluate(const std::string& name, const std::string& description, const std::vector<PointSamples>& points,
-                  const Grid& grid, const std::vector<int>& node_of, ZeroForce zero_force, const Predictor& predict) {
+                  const std::vector<bool>& interior, ZeroForce zero_force, const Predictor& predict) {
   CvMethod m{name, description, {}, 0, 0.0, 0.0, 0.0};
   double sum = 0.0, interior_sum = 0.0;
   int interior_count = 0;
@@ -42,8 +45,7 @@ CvMethod evaluate(const std::string& name, const std::string& description, const
     CvPoint r;
     r.id = points[k].id;
     r.position = points[k].position;
-    const int i = node_of[k] / static_cast<int>(grid.ys.size()), j = node_of[k] % static_cast<int>(grid.ys.size());
-    r.interior = i > 0 && i + 1 < static_cast<int>(grid.xs.size()) && j > 0 && j + 1 < static_cast<int>(grid.ys.size());
+    r.interior = interior[k];
     if (const auto pred = predict(k)) {
       double abs_sum = 0.0, vec_sum = 0.0;
       int components = 0, loads = 0;
@@ -108,46 +110,106 @@ std::optional<Prediction> from_neighbours(const Grid& grid, const std::vector<Pr
 }
 }  // namespace
 
-CvReport cross_validate(const std::vector<PointSamples>& points, double link_length_m, const std::string& source,
-                        ZeroForce zero_force) {
-  std::vector<Vec2> positions;
-  for (const auto& p : points) positions.push_back(p.position);
-  std::vector<int> node_of;
-  const Grid grid = Grid::from_positions(positions, node_of, source);
-
+CvReport cross_validate(const std::vector<PointSamples>& points, const kinematics::FiveBarGeometry& geometry,
+                        const std::string& source, ZeroForce zero_force) {
   CvReport report;
   report.source = source;
   report.zero_force = zero_force;
-
-  std::vector<Prediction> bilinear(points.size()), symmetric(points.size());
-  for (std::size_t k = 0; k < points.size(); ++k) {
-    const PointFit f = fit_point(points[k], source);
-    bilinear[static_cast<std::size_t>(node_of[k])] = {f.compliance(), f.offset()};
-    const GridNode n = fit_symmetric_node(points[k], source);
-    symmetric[static_cast<std::size_t>(node_of[k])] = {n.compliance, n.offset};
+  // Interior: strictly inside the bounding rectangle of all points (1 µm tolerance).
+  double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+  for (const auto& p : points) {
+    x0 = std::min(x0, p.position.x());
+    x1 = std::max(x1, p.position.x());
+    y0 = std::min(y0, p.position.y());
+    y1 = std::max(y1, p.position.y());
   }
-  report.methods.push_back(evaluate("bilinear", "thesis eqs. 4.8-4.12: per-point fits, bilinear between points",
-                                    points, grid, node_of, zero_force, [&](std::size_t k) {
-                                      return from_neighbours(grid, bilinear, node_of[k]);
-                                    }));
-  report.methods.push_back(evaluate("symmetric", "per-point fit with C = C^T > 0 (reciprocity), bilinear between",
-                                    points, grid, node_of, zero_force, [&](std::size_t k) {
-                                      return from_neighbours(grid, symmetric, node_of[k]);
-                                    }));
+  std::vector<bool> interior;
+  for (const auto& p : points) {
+    interior.push_back(p.position.x() > x0 + 1e-6 && p.position.x() < x1 - 1e-6 && p.position.y() > y0 + 1e-6 &&
+                       p.position.y() < y1 - 1e-6);
+  }
+
+  std::vector<Vec2> positions;
+  for (const auto& p : points) positions.push_back(p.position);
+  std::vector<int> node_of;
+  std::optional<Grid> grid;
+  try {
+    grid = Grid::from_positions(positions, node_of, source);
+  } catch (const Error& e) {
+    for (const char* m : {"bilinear", "symmetric"}) {
+      report.skipped.push_back({m, std::string("needs a full rectangular grid: ") + e.message()});
+    }
+  }
+  std::vector<Prediction> bilinear(points.size()), symmetric(points.size());
+  if (grid) {
+    try {
+      for (std::size_t k = 0; k < points.size(); ++k) {
+        const PointFit f = fit_point(points[k], source);
+        bilinear[static_cast<std::size_t>(node_of[k])] = {f.compliance(), f.offset()};
+        const GridNode n = fit_symmetric_node(points[k], source);
+        symmetric[static_cast<std::size_t>(node_of[k])] = {n.compliance, n.offset};
+      }
+    } catch (const Error& e) {
+      grid.reset();
+      for (const char* m : {"bilinear", "symmetric"}) report.skipped.push_back({m, e.message()});
+    }
+  }
+  if (grid) {
+    report.methods.push_back(evaluate("bilinear", "thesis eqs. 4.8-4.12: per-point fits, bilinear between points",
+                                      points, interior, zero_force, [&](std::size_t k) {
+                                        return from_neighbours(*grid, bilinear, node_of[k]);
+                                      }));
+    report.methods.push_back(evaluate("symmetric", "per-point fit with C = C^T > 0 (reciprocity), bilinear between",
+                                      points, interior, zero_force, [&](std::size_t k) {
+                                        return from_neighbours(*grid, symmetric, node_of[k]);
+                                      }));
+  }
   for (int order = 0; order <= 2; ++order) {
     const std::string name = order == 1 ? "physical" : "physical-" + std::to_string(order);
     const std::string description = "five-bar statics C = U^-T D(p) U^-1, D polynomial of order " + std::to_string(order);
-    report.methods.push_back(evaluate(name, description, points, grid, node_of, zero_force, [&](std::size_t k) {
-      std::vector<PointSamples> rest;
-      for (std::size_t m = 0; m < points.size(); ++m) {
-        if (m != k) rest.push_back(points[m]);
-      }
-      const auto model = fit_physical_model(rest, link_length_m, order, source);
-      model->set_outside_policy(OutsidePolicy::extrapolate);
-      return std::optional<Prediction>(Prediction{model->compliance(points[k].position), Vec2::Zero()});
-    }));
+    try {
+      report.methods.push_back(evaluate(name, description, points, interior, zero_force, [&](std::size_t k) {
+        std::vector<PointSamples> rest;
+        for (std::size_t m = 0; m < points.size(); ++m) {
+          if (m != k) rest.push_back(points[m]);
+        }
+        const auto model = fit_physical_model(rest, geometry, order, source);
+        model->set_outside_policy(OutsidePolicy::extrapolate);
+        return std::optional<Prediction>(Prediction{model->compliance(points[k].position), Vec2::Zero()});
+      }));
+    } catch (const Error& e) {
+      report.skipped.push_back({name, e.message()});
+    }
   }
   return report;
+}
+
+std::string favoured_method(const CvReport& report, std::vector<std::pair<std::string, double>>* scores) {
+  if (report.methods.empty()) throw Error(SourceLocation{report.source}, "no compliance method can run on these points");
+  // The points every method predicted.
+  std::vector<bool> common(report.methods.front().points.size(), true);
+  for (const auto& m : report.methods) {
+    for (std::size_t k = 0; k < m.points.size() && k < common.size(); ++k) common[k] = common[k] && m.points[k].predicted;
+  }
+  std::string best;
+  double best_score = 0.0;
+  for (const auto& m : report.methods) {
+    double sum = 0.0;
+    int n = 0;
+    for (std::size_t k = 0; k < m.points.size() && k < common.size(); ++k) {
+      if (common[k]) {
+        sum += m.points[k].mean_abs_error_um;
+        ++n;
+      }
+    }
+    const double score = n > 0 ? sum / n : std::numeric_limits<double>::infinity();
+    if (scores) scores->emplace_back(m.method, score);
+    if (best.empty() || score < best_score) {
+      best = m.method;
+      best_score = score;
+    }
+  }
+  return best;
 }
 
 }  // namespace stiffpath::compliance

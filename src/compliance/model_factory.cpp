@@ -1,15 +1,13 @@
-// Fitting models by method name, the built-in thesis models, and dispatch between files and built-ins.
+// Fitting models by method name (or the one cross-validation favours), the built-in thesis models, and a robot's own model.
 #include "stiffpath/compliance/model_factory.hpp"
 
-#include <filesystem>
 #include <fmt/format.h>
 
+#include "stiffpath/compliance/cross_validation.hpp"
 #include "stiffpath/compliance/grid_model.hpp"
 #include "stiffpath/compliance/model_file.hpp"
 #include "stiffpath/compliance/physical_model.hpp"
-#include "stiffpath/core/embedded.hpp"
 #include "stiffpath/core/error.hpp"
-#include "stiffpath/core/sha256.hpp"
 
 namespace stiffpath::compliance {
 
@@ -22,44 +20,51 @@ std::string join(const std::vector<std::string>& items) {
   return out;
 }
 
-std::string data_hash(const std::string& source) {
-  if (source == "thesis") {
-    const auto text = core::find_embedded("thesis/displacements.csv");
-    return text ? core::sha256_hex(*text) : "";
-  }
-  // A table built in memory has no file to hash.
-  return std::filesystem::is_regular_file(source) ? core::sha256_file_hex(source) : "";
-}
+std::string short_hash(const kinematics::FiveBarGeometry& g) { return kinematics::geometry_hash(g).substr(0, 12); }
 }  // namespace
 
-LoadedModel fit_model(const measurement::DisplacementTable& table, const std::string& mechanism,
-                      const std::string& method, ForceConvention convention, double link_length_m) {
-  const auto rows = table.filter(mechanism);
-  if (rows.rows.empty()) {
-    throw Error(SourceLocation{table.source}, fmt::format("no rows for mechanism '{}' (the table has: {})", mechanism,
-                                                          join(table.mechanisms())));
+LoadedModel fit_model(const measurement::DisplacementTable& table, const std::string& rows, const std::string& method,
+                      ForceConvention convention, const kinematics::Robot& robot) {
+  const auto selected = table.filter(rows);
+  if (selected.rows.empty()) {
+    throw Error(SourceLocation{table.source},
+                fmt::format("no rows with mechanism '{}' (the table has: {})", rows, join(table.mechanisms())));
   }
-  const auto points = group_by_point(rows, convention);
+  const auto points = group_by_point(selected, convention);
   LoadedModel out;
-  out.provenance = {table.source, data_hash(table.source), mechanism, convention};
-  if (method == "bilinear") {
-    out.model = make_bilinear_model(fit_points(rows, convention), table.source);
-  } else if (method == "symmetric") {
-    out.model = make_symmetric_model(points, table.source);
-  } else if (method == "physical" || method == "physical-0" || method == "physical-2") {
-    const int order = method == "physical" ? 1 : method.back() - '0';
-    out.model = fit_physical_model(points, link_length_m, order, table.source);
-  } else {
-    throw Error(fmt::format("unknown compliance method '{}' (known: {})", method, join(method_names())));
+  out.provenance = {table.source, table.sha256, rows, convention, robot.name, robot.geometry, "named", nullptr};
+  std::string chosen = method;
+  if (method.empty() || method == "auto") {
+    const CvReport report = cross_validate(points, robot.geometry, table.source);
+    std::vector<std::pair<std::string, double>> scores;
+    chosen = favoured_method(report, &scores);
+    nlohmann::json by_method = nlohmann::json::object(), skipped = nlohmann::json::object();
+    for (const auto& [name, score] : scores) by_method[name] = score;
+    for (const auto& s : report.skipped) skipped[s.method] = s.reason;
+    out.provenance.selected_by = "cross-validation";
+    out.provenance.selection = {{"criterion", "smallest mean leave-one-out error over the points every method predicts"},
+                                {"mean_error_um", by_method},
+                                {"could_not_run", skipped}};
   }
+  if (chosen == "bilinear") {
+    out.model = make_bilinear_model(fit_points(selected, convention), table.source);
+  } else if (chosen == "symmetric") {
+    out.model = make_symmetric_model(points, table.source);
+  } else if (chosen == "physical" || chosen == "physical-0" || chosen == "physical-2") {
+    const int order = chosen == "physical" ? 1 : chosen.back() - '0';
+    out.model = fit_physical_model(points, robot.geometry, order, table.source);
+  } else {
+    throw Error(fmt::format("unknown compliance method '{}' (known: {}, auto)", method, join(method_names())));
+  }
+  out.label = fmt::format("{} fitted to {}{}", chosen, table.source, rows.empty() ? "" : " rows " + rows);
   return out;
 }
 
 bool is_builtin_model(const std::string& name) { return name.rfind("thesis-", 0) == 0; }
 
 LoadedModel load_model(const std::string& name_or_path) {
-  if (!is_builtin_model(name_or_path)) return load_model_file(name_or_path);
-  // thesis-<oc|sc>[-<method>]
+  if (!is_builtin_model(name_or_path)) return load_model_file(core::parse_data_ref(name_or_path));
+  // thesis-<oc|sc>[-<method>]: the preset's own table, rows and geometry.
   const std::string rest = name_or_path.substr(7);
   const std::string build = rest.substr(0, 2);
   const std::string method = rest.size() > 3 && rest[2] == '-' ? rest.substr(3) : "bilinear";
@@ -67,7 +72,62 @@ LoadedModel load_model(const std::string& name_or_path) {
     throw Error(fmt::format("unknown built-in model '{}' (use thesis-oc or thesis-sc, optionally with -<method>: {})",
                             name_or_path, join(method_names())));
   }
-  return fit_model(measurement::load_displacement_table("thesis"), build == "oc" ? "OC" : "SC", method);
+  const kinematics::Robot robot = kinematics::load_robot(build + "-gu");
+  LoadedModel out = fit_model(measurement::load_displacement_table(robot.compliance.table), robot.compliance.rows,
+                              method, ForceConvention::measured, robot);
+  out.label = name_or_path;
+  return out;
+}
+
+measurement::DisplacementTable robot_table(const kinematics::Robot& robot) {
+  if (robot.compliance.table.empty()) {
+    throw Error(SourceLocation{robot.file.label()},
+                fmt::format("robot '{}' names no displacement table (compliance.table)", robot.name));
+  }
+  const auto table = measurement::load_displacement_table(robot.compliance.table);
+  auto rows = table.filter(robot.compliance.rows);
+  if (rows.rows.empty()) {
+    throw Error(SourceLocation{table.source}, fmt::format("no rows with mechanism '{}' for robot '{}' (the table has: {})",
+                                                          robot.compliance.rows, robot.name, join(table.mechanisms())));
+  }
+  return rows;
+}
+
+void check_model_geometry(const LoadedModel& model, const kinematics::Robot& robot, bool force) {
+  if (force) return;
+  const Provenance& p = model.provenance;
+  if (!p.geometry) {
+    throw Error(fmt::format("model {} does not record the robot geometry it was fitted for (a file of format "
+                            "version 1): refit it for robot '{}' or pass --force-model",
+                            model.label, robot.name));
+  }
+  if (kinematics::geometry_hash(*p.geometry) != robot.geometry_hash()) {
+    throw Error(fmt::format("model {} was fitted for robot '{}' (geometry {}), not for robot '{}' (geometry {}): fit "
+                            "one for this robot or pass --force-model",
+                            model.label, p.robot, short_hash(*p.geometry), robot.name, short_hash(robot.geometry)));
+  }
+}
+
+LoadedModel load_robot_model(const kinematics::Robot& robot, const ModelRequest& request) {
+  if (!request.model.empty()) {
+    LoadedModel m = load_model(request.model);
+    check_model_geometry(m, robot, request.force);
+    return m;
+  }
+  if (request.method.empty() && !robot.compliance.model.empty()) {
+    LoadedModel m = load_model_file(robot.compliance.model);
+    check_model_geometry(m, robot, request.force);
+    return m;
+  }
+  if (robot.compliance.table.empty()) {
+    throw Error(SourceLocation{robot.file.label()},
+                fmt::format("robot '{}' has no compliance data: give compliance.table or compliance.model in its file, "
+                            "or a model with --model",
+                            robot.name));
+  }
+  const std::string method = !request.method.empty() ? request.method : robot.compliance.method;
+  return fit_model(measurement::load_displacement_table(robot.compliance.table), robot.compliance.rows, method,
+                   request.convention, robot);
 }
 
 }  // namespace stiffpath::compliance

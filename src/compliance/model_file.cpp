@@ -10,6 +10,7 @@
 #include "stiffpath/core/atomic_file.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/core/json_fields.hpp"
+#include "stiffpath/kinematics/robot.hpp"
 
 #ifndef STIFFPATH_VERSION
 #define STIFFPATH_VERSION "0.1.0"
@@ -28,10 +29,17 @@ nlohmann::json model_to_json(const Model& model, const Provenance& provenance) {
       {"provenance",
        {{"source", provenance.source},
         {"sha256", provenance.sha256},
-        {"mechanism", provenance.mechanism},
+        {"rows", provenance.rows},
         {"force_convention", to_string(provenance.convention)},
+        {"method_selected_by", provenance.selected_by},
         {"created_by", std::string("stiffpath ") + STIFFPATH_VERSION}}},
   };
+  if (!provenance.selection.is_null()) doc["provenance"]["selection"] = provenance.selection;
+  if (provenance.geometry) {
+    doc["robot"] = {{"name", provenance.robot},
+                    {"geometry", kinematics::geometry_to_json(*provenance.geometry)},
+                    {"geometry_sha256", kinematics::geometry_hash(*provenance.geometry)}};
+  }
   doc.update(model.parameters());
   return doc;
 }
@@ -87,7 +95,7 @@ std::unique_ptr<Model> grid_model_from(const core::JsonObject& root, const std::
   }
   std::vector<GridNode> nodes;
   for (std::size_t k = 0; k < nodes_json.size(); ++k) {
-    const core::JsonObject n(nodes_json[k], root.context() + ".nodes[" + std::to_string(k) + "]");
+    const core::JsonObject n = root.element("nodes", k);
     const std::size_t i = k / grid.ys.size(), j = k % grid.ys.size();
     if (std::abs(n.number("x_mm") * 1e-3 - grid.xs[i]) > 1e-9 || std::abs(n.number("y_mm") * 1e-3 - grid.ys[j]) > 1e-9) {
       n.fail("x_mm", fmt::format("node is not at grid position ({}, {}) mm", grid.xs[i] * 1e3, grid.ys[j] * 1e3));
@@ -99,8 +107,17 @@ std::unique_ptr<Model> grid_model_from(const core::JsonObject& root, const std::
   return std::make_unique<GridModel>(method, std::move(grid), std::move(nodes));
 }
 
-std::unique_ptr<Model> physical_model_from(const core::JsonObject& root) {
-  const double l = root.positive("link_length_mm") * 1e-3;
+std::unique_ptr<Model> physical_model_from(const core::JsonObject& root,
+                                           const std::optional<kinematics::FiveBarGeometry>& recorded) {
+  // Version 1 files give the thesis robot's link length; version 2 files their robot's geometry.
+  kinematics::FiveBarGeometry geometry;
+  if (root.has("link_length_mm")) {
+    geometry = kinematics::FiveBarGeometry::thesis(root.positive("link_length_mm") * 1e-3);
+  } else if (recorded) {
+    geometry = *recorded;
+  } else {
+    root.fail("robot", "missing field (the physical model needs the robot's geometry)");
+  }
   const double order_value = root.number("order");
   if (order_value != 0.0 && order_value != 1.0 && order_value != 2.0) root.fail("order", "must be 0, 1 or 2");
   const auto b = numbers(root, "bounds_mm", 4);
@@ -121,39 +138,78 @@ std::unique_ptr<Model> physical_model_from(const core::JsonObject& root) {
   if (coefficients.size() != expected) {
     root.fail("D_um_per_N", fmt::format("order {} needs {} entries, got {}", order, expected, coefficients.size()));
   }
-  return std::make_unique<PhysicalModel>(l, GridBounds{b[0] * 1e-3, b[1] * 1e-3, b[2] * 1e-3, b[3] * 1e-3}, order,
+  return std::make_unique<PhysicalModel>(geometry, GridBounds{b[0] * 1e-3, b[1] * 1e-3, b[2] * 1e-3, b[3] * 1e-3}, order,
                                          std::move(coefficients),
                                          root.has("stats") ? root.raw()["stats"] : nlohmann::json::object());
 }
+
+// The robot block of a version-2 file: the geometry, checked against its recorded hash.
+kinematics::FiveBarGeometry recorded_geometry(const core::JsonObject& robot) {
+  const core::JsonObject g = robot.object("geometry");
+  kinematics::FiveBarGeometry geometry;
+  for (std::size_t i = 0; i < 2; ++i) {
+    const std::string side = i == 0 ? "left" : "right";
+    const auto [x, y] = g.pair(side + "_actuator_mm");
+    geometry.actuator_m[i] = {x * 1e-3, y * 1e-3};
+    geometry.proximal_m[i] = g.positive(side + "_proximal_mm") * 1e-3;
+    geometry.distal_m[i] = g.positive(side + "_distal_mm") * 1e-3;
+  }
+  const auto& elbows = g.array("elbows");
+  if (elbows.size() != 2 || !elbows[0].is_number() || !elbows[1].is_number()) g.fail("elbows", "must be [+-1, +-1]");
+  geometry.elbows = {elbows[0].get<double>() > 0 ? 1 : -1, elbows[1].get<double>() > 0 ? 1 : -1};
+  geometry.assembly = g.sign("assembly");
+  if (robot.string("geometry_sha256") != kinematics::geometry_hash(geometry)) {
+    robot.fail("geometry_sha256", "does not match the geometry recorded beside it (was the file edited?)");
+  }
+  return geometry;
+}
 }  // namespace
 
-LoadedModel model_from_json(const nlohmann::json& document, const std::string& label) {
-  const core::JsonObject root(document, label);
+LoadedModel model_from_json(const core::JsonDocument& document) {
+  const std::string& label = document.label;
+  const core::JsonObject root(document);
   if (root.string("format") != kModelFormat) root.fail("format", std::string("must be \"") + kModelFormat + "\"");
-  if (root.number("version") != kModelFormatVersion) {
-    root.fail("version", fmt::format("this stiffpath reads version {}", kModelFormatVersion));
+  const double version = root.number("version");
+  if (version != 1.0 && version != kModelFormatVersion) {
+    root.fail("version", fmt::format("this stiffpath reads versions 1 and {}", kModelFormatVersion));
+  }
+  LoadedModel out;
+  out.label = label;
+  if (version >= 2.0) {
+    const core::JsonObject robot = root.object("robot");
+    out.provenance.robot = robot.string("name");
+    out.provenance.geometry = recorded_geometry(robot);
   }
   const std::string method = root.string("method");
-  LoadedModel out;
   if (method == "bilinear" || method == "symmetric") {
     out.model = grid_model_from(root, method);
   } else if (method == "physical") {
-    out.model = physical_model_from(root);
+    out.model = physical_model_from(root, out.provenance.geometry);
   } else {
     root.fail("method", "'" + method + "' is not one of bilinear, symmetric, physical");
   }
-  try {
-    out.model->set_outside_policy(parse_outside_policy(root.string("outside_policy")));
-    out.model->set_zero_force(parse_zero_force(root.string("zero_force")));
-  } catch (const Error& e) {
-    throw Error(label + ": " + e.what());
-  }
+  const auto parsed = [](const core::JsonObject& obj, const char* key, auto parse) {
+    const std::string text = obj.string(key);
+    try {
+      return parse(text);
+    } catch (const Error& e) {
+      obj.fail(key, e.message());
+    }
+  };
+  out.model->set_outside_policy(parsed(root, "outside_policy", parse_outside_policy));
+  out.model->set_zero_force(parsed(root, "zero_force", parse_zero_force));
   const core::JsonObject prov = root.object("provenance");
-  out.provenance = {prov.string("source"), prov.string("sha256"), prov.string("mechanism"),
-                    parse_force_convention(prov.string("force_convention"))};
+  out.provenance.source = prov.string("source");
+  out.provenance.sha256 = prov.string("sha256");
+  out.provenance.rows = prov.has("rows") ? prov.string("rows") : prov.has("mechanism") ? prov.string("mechanism") : "";
+  out.provenance.convention = parsed(prov, "force_convention", parse_force_convention);
+  if (prov.has("method_selected_by")) out.provenance.selected_by = prov.string("method_selected_by");
+  if (prov.has("selection")) out.provenance.selection = prov.raw()["selection"];
   return out;
 }
 
-LoadedModel load_model_file(const std::string& path) { return model_from_json(core::read_json_file(path), path); }
+LoadedModel load_model_file(const core::DataRef& file) {
+  return model_from_json(core::parse_json_document(core::read_data(file), file.label()));
+}
 
 }  // namespace stiffpath::compliance

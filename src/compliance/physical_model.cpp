@@ -7,12 +7,13 @@
 #include <fmt/format.h>
 
 #include "stiffpath/core/error.hpp"
+#include "stiffpath/kinematics/robot.hpp"
 
 namespace stiffpath::compliance {
 
-PhysicalModel::PhysicalModel(double link_length_m, GridBounds bounds, int order,
+PhysicalModel::PhysicalModel(const kinematics::FiveBarGeometry& geometry, GridBounds bounds, int order,
                              std::vector<std::array<double, 3>> coefficients, nlohmann::json stats)
-    : l_(link_length_m), bounds_(bounds), order_(order), coefficients_(std::move(coefficients)),
+    : geometry_(geometry), bounds_(bounds), order_(order), coefficients_(std::move(coefficients)),
       stats_(std::move(stats)) {
   std::array<double, kMaxTerms> b{};
   if (order_ < 0 || order_ > 2) throw Error(fmt::format("physical model: order must be 0, 1 or 2, got {}", order_));
@@ -21,8 +22,10 @@ PhysicalModel::PhysicalModel(double link_length_m, GridBounds bounds, int order,
     throw Error(fmt::format("physical model: order {} needs {} coefficient triples, got {}", order_, terms,
                             coefficients_.size()));
   }
-  if (!(l_ > 0.0) || !(bounds_.x_max > bounds_.x_min) || !(bounds_.y_max > bounds_.y_min)) {
-    throw Error("physical model: link length and grid bounds must be positive and non-empty");
+  (void)kinematics::FiveBar(geometry_, {0.0, 2.0, 0.0});  // throws for a geometry that is no five-bar
+  thesis_ = geometry_.is_thesis_case();
+  if (!(bounds_.x_max > bounds_.x_min) || !(bounds_.y_max > bounds_.y_min)) {
+    throw Error("physical model: the grid bounds must be non-empty");
   }
 }
 
@@ -33,9 +36,10 @@ int PhysicalModel::basis(const GridBounds& g, int order, const Vec2& p, std::arr
   return order == 0 ? 1 : order == 1 ? 3 : 6;
 }
 
-Mat2 PhysicalModel::link_force_map(double l, const Vec2& p) noexcept {
-  // Eq. 2.2 without trigonometry: cos/sin of θ1,2 = φ ± η from cos φ = x/r, sin φ = y/r,
-  // cos η = r/2l, sin η = √(1 − cos²η). r is kept just inside (0, 2l) so that the map stays finite.
+namespace {
+// Eq. 2.2 without trigonometry: cos/sin of θ1,2 = φ ± η from cos φ = x/r, sin φ = y/r,
+// cos η = r/2l, sin η = √(1 − cos²η). r is kept just inside (0, 2l) so that the map stays finite.
+Mat2 thesis_link_force_map(double l, const Vec2& p) noexcept {
   const double r_raw = p.norm();
   const double r = std::clamp(r_raw, 1e-9, 2.0 * l * (1.0 - 1e-12));
   const double c_phi = r_raw > 0.0 ? p.x() / r_raw : 1.0, s_phi = r_raw > 0.0 ? p.y() / r_raw : 0.0;
@@ -46,6 +50,30 @@ Mat2 PhysicalModel::link_force_map(double l, const Vec2& p) noexcept {
   const double det = c2 * s1 - c1 * s2;
   Mat2 inv;
   inv << s1 / det, -c1 / det, -s2 / det, c2 / det;
+  return inv;
+}
+}  // namespace
+
+Mat2 PhysicalModel::link_force_map(const kinematics::FiveBarGeometry& g, const Vec2& p) noexcept {
+  if (g.is_thesis_case()) return thesis_link_force_map(g.proximal_m[0], p);
+  // The working mode's elbows without trigonometry: e_i is the direction of A_iC turned by s_i·α_i,
+  // cos α_i = (r² + l_p² − l_d²)/(2 r l_p); u_i = (C − A_i − l_p e_i)/l_d.
+  Vec2 u[2];
+  for (std::size_t i = 0; i < 2; ++i) {
+    const double lp = g.proximal_m[i], ld = g.distal_m[i], s = g.elbows[i];
+    const Vec2 d = p - g.actuator_m[i];
+    const double r_raw = d.norm();
+    const double r = std::clamp(r_raw, std::abs(lp - ld) * (1.0 + 1e-12) + 1e-9, (lp + ld) * (1.0 - 1e-12));
+    const Vec2 dir = r_raw > 0.0 ? Vec2(d / r_raw) : Vec2(1.0, 0.0);
+    const double c_alpha = std::clamp((r * r + lp * lp - ld * ld) / (2.0 * r * lp), -1.0, 1.0);
+    const double s_alpha = std::sqrt(1.0 - c_alpha * c_alpha);
+    const Vec2 e{dir.x() * c_alpha - s * dir.y() * s_alpha, dir.y() * c_alpha + s * dir.x() * s_alpha};
+    u[i] = (r * dir - lp * e) / ld;
+  }
+  // U = [u1 u2]; U⁻¹ = [u2.y −u2.x; −u1.y u1.x] / det U.
+  const double det = u[0].x() * u[1].y() - u[1].x() * u[0].y();
+  Mat2 inv;
+  inv << u[1].y() / det, -u[1].x() / det, -u[0].y() / det, u[0].x() / det;
   return inv;
 }
 
@@ -65,22 +93,23 @@ Mat2 PhysicalModel::link_compliance(const Vec2& p) const noexcept {
 }
 
 Mat2 PhysicalModel::compliance(const Vec2& p) const noexcept {
-  const Mat2 r = link_force_map(l_, p);
+  const Mat2 r = thesis_ ? thesis_link_force_map(geometry_.proximal_m[0], p) : link_force_map(geometry_, p);
   return r.transpose() * link_compliance(p) * r;
 }
 
 nlohmann::json PhysicalModel::parameters() const {
   nlohmann::json d = nlohmann::json::array();
   for (const auto& c : coefficients_) d.push_back({c[0] * 1e6, c[1] * 1e6, c[2] * 1e6});
-  return {{"link_length_mm", l_ * 1e3},
+  return {{"geometry", kinematics::geometry_to_json(geometry_)},
           {"order", order_},
           {"bounds_mm", {bounds_.x_min * 1e3, bounds_.x_max * 1e3, bounds_.y_min * 1e3, bounds_.y_max * 1e3}},
           {"D_um_per_N", d},
           {"stats", stats_}};
 }
 
-std::unique_ptr<PhysicalModel> fit_physical_model(const std::vector<PointSamples>& points, double link_length_m,
-                                                  int order, const std::string& source) {
+std::unique_ptr<PhysicalModel> fit_physical_model(const std::vector<PointSamples>& points,
+                                                  const kinematics::FiveBarGeometry& geometry, int order,
+                                                  const std::string& source) {
   GridBounds g{1e300, -1e300, 1e300, -1e300};
   for (const auto& p : points) {
     g.x_min = std::min(g.x_min, p.position.x());
@@ -98,7 +127,7 @@ std::unique_ptr<PhysicalModel> fit_physical_model(const std::vector<PointSamples
   const Mat2 e[3] = {(Mat2() << 1, 0, 0, 0).finished(), (Mat2() << 0, 1, 1, 0).finished(),
                      (Mat2() << 0, 0, 0, 1).finished()};
   for (const auto& point : points) {
-    const Mat2 r = PhysicalModel::link_force_map(link_length_m, point.position);
+    const Mat2 r = PhysicalModel::link_force_map(geometry, point.position);
     PhysicalModel::basis(g, order, point.position, b);
     for (const auto& s : point.samples) {
       const std::optional<double> measured[2] = {s.dx_m, s.dy_m};
@@ -127,7 +156,7 @@ std::unique_ptr<PhysicalModel> fit_physical_model(const std::vector<PointSamples
 
   std::vector<std::array<double, 3>> coefficients;
   for (int k = 0; k < terms; ++k) coefficients.push_back({sol(3 * k) * 1e-6, sol(3 * k + 1) * 1e-6, sol(3 * k + 2) * 1e-6});
-  auto model = std::make_unique<PhysicalModel>(link_length_m, g, order, coefficients, nlohmann::json::object());
+  auto model = std::make_unique<PhysicalModel>(geometry, g, order, coefficients, nlohmann::json::object());
   // Positive definiteness of D over the grid rectangle (51 × 51 samples).
   double min_eig = 1e300;
   for (int i = 0; i <= 50; ++i) {
@@ -141,7 +170,7 @@ std::unique_ptr<PhysicalModel> fit_physical_model(const std::vector<PointSamples
                           {"unknowns", unknowns},
                           {"min_D_eigenvalue_um_per_N", min_eig * 1e6},
                           {"positive_definite_on_grid", min_eig > 0.0}};
-  return std::make_unique<PhysicalModel>(link_length_m, g, order, std::move(coefficients), std::move(stats));
+  return std::make_unique<PhysicalModel>(geometry, g, order, std::move(coefficients), std::move(stats));
 }
 
 }  // namespace stiffpath::compliance

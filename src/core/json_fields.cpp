@@ -46,15 +46,75 @@ nlohmann::json read_json_file(const std::string& path) {
   return parse_json(buffer.str(), path);
 }
 
+JsonDocument parse_json_document(std::string_view text, const std::string& label) {
+  JsonDocument doc{parse_json(text, label), label, {}};
+  doc.keys = index_json_keys(text);
+  return doc;
+}
+
+JsonDocument read_json_document(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(SourceLocation{path}, "cannot open file");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  return parse_json_document(buffer.str(), path);
+}
+
 JsonObject::JsonObject(const nlohmann::json& value, std::string context)
     : value_(value), context_(std::move(context)) {
   if (!value_.is_object()) throw Error(context_ + ": expected a JSON object, got " + type_name(value_));
 }
 
+JsonObject::JsonObject(const JsonDocument& document) : JsonObject(document.value, document.label, "", &document.keys) {}
+
+JsonObject::JsonObject(const nlohmann::json& value, std::string label, std::string path, const JsonKeyIndex* keys)
+    : value_(value), context_(path.empty() ? label : label + "." + path), label_(std::move(label)),
+      path_(std::move(path)), keys_(keys) {
+  if (!value_.is_object()) {
+    const auto it = keys_->find(path_);
+    const SourceLocation where =
+        it == keys_->end() ? SourceLocation{label_} : SourceLocation{label_, it->second.first, it->second.second};
+    throw Error(where, (path_.empty() ? std::string("document") : path_) + ": expected a JSON object, got " +
+                           type_name(value_));
+  }
+}
+
+std::string JsonObject::child_path(std::string_view key) const {
+  return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+}
+
 bool JsonObject::has(std::string_view key) const { return value_.contains(key); }
 
 void JsonObject::fail(std::string_view key, const std::string& message) const {
-  throw Error(context_ + "." + std::string(key) + ": " + message);
+  if (!keys_) throw Error(context_ + "." + std::string(key) + ": " + message);
+  const std::string path = child_path(key);
+  auto it = keys_->find(path);
+  if (it == keys_->end()) it = keys_->find(path_);  // a missing field: point at its object
+  const SourceLocation where =
+      it == keys_->end() ? SourceLocation{label_} : SourceLocation{label_, it->second.first, it->second.second};
+  throw Error(where, path + ": " + message);
+}
+
+void JsonObject::allow_only(std::initializer_list<std::string_view> known,
+                            const std::map<std::string, std::string, std::less<>>& hints) const {
+  std::string first;
+  std::pair<int, int> first_at{1 << 30, 0};
+  for (const auto& item : value_.items()) {
+    bool ok = false;
+    for (const auto k : known) ok = ok || item.key() == k;
+    if (ok) continue;
+    std::pair<int, int> at{1 << 29, 0};
+    if (keys_) {
+      if (const auto it = keys_->find(child_path(item.key())); it != keys_->end()) at = it->second;
+    }
+    if (first.empty() || at < first_at) {
+      first = item.key();
+      first_at = at;
+    }
+  }
+  if (first.empty()) return;
+  const auto hint = hints.find(first);
+  fail(first, "unknown field" + (hint == hints.end() ? std::string() : " (" + hint->second + ")"));
 }
 
 const nlohmann::json& JsonObject::field(std::string_view key) const {
@@ -83,6 +143,22 @@ double JsonObject::non_negative(std::string_view key) const {
   return x;
 }
 
+int JsonObject::sign(std::string_view key) const {
+  const auto& v = field(key);
+  if (!v.is_number() || (v.get<double>() != 1.0 && v.get<double>() != -1.0)) fail(key, "must be +1 or -1, got " + v.dump());
+  return v.get<double>() > 0 ? 1 : -1;
+}
+
+std::pair<double, double> JsonObject::pair(std::string_view key) const {
+  const auto& v = field(key);
+  if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number()) {
+    fail(key, "must be an array of two numbers [a, b], got " + v.dump());
+  }
+  const double a = v[0].get<double>(), b = v[1].get<double>();
+  if (!std::isfinite(a) || !std::isfinite(b)) fail(key, "must hold finite numbers");
+  return {a, b};
+}
+
 std::string JsonObject::string(std::string_view key) const {
   const auto& v = field(key);
   if (!v.is_string()) fail(key, "must be a string, got " + type_name(v) + " " + v.dump());
@@ -92,6 +168,7 @@ std::string JsonObject::string(std::string_view key) const {
 JsonObject JsonObject::object(std::string_view key) const {
   const auto& v = field(key);
   if (!v.is_object()) fail(key, "must be an object, got " + type_name(v));
+  if (keys_) return JsonObject(v, label_, child_path(key), keys_);
   return JsonObject(v, context_ + "." + std::string(key));
 }
 
@@ -99,6 +176,15 @@ const nlohmann::json& JsonObject::array(std::string_view key) const {
   const auto& v = field(key);
   if (!v.is_array()) fail(key, "must be an array, got " + type_name(v));
   return v;
+}
+
+JsonObject JsonObject::element(std::string_view key, std::size_t index) const {
+  const auto& a = array(key);
+  const std::string name = std::string(key) + "[" + std::to_string(index) + "]";
+  if (index >= a.size()) fail(key, "has no element " + std::to_string(index));
+  if (!a[index].is_object()) fail(name, "must be an object, got " + type_name(a[index]));
+  if (keys_) return JsonObject(a[index], label_, child_path(name), keys_);
+  return JsonObject(a[index], context_ + "." + name);
 }
 
 }  // namespace stiffpath::core

@@ -16,8 +16,10 @@ const char* describe(Reach reach) noexcept {
   switch (reach) {
     case Reach::ok: return "reachable";
     case Reach::not_finite: return "coordinate is not a finite number";
-    case Reach::near_stretched: return "too close to the stretched-out singularity (r -> 2l)";
-    case Reach::near_origin: return "too close to the actuator axis singularity (r -> 0)";
+    case Reach::near_stretched: return "too close to the stretched-out singularity (|AC| -> l_p + l_d)";
+    case Reach::near_origin: return "too close to the folded singularity (|AC| -> |l_p - l_d|)";
+    case Reach::near_parallel: return "too close to the parallel singularity (the distal links almost collinear)";
+    case Reach::other_assembly: return "only reachable in the other assembly mode (across the parallel singularity)";
     case Reach::ill_conditioned: return "Jacobian is ill-conditioned (condition number above the margin)";
   }
   return "unknown";
@@ -30,11 +32,16 @@ double Mechanism::condition_number(const Vec2& q) const noexcept {
   return s(0) / s(1);
 }
 
+std::string Mechanism::explain(const Vec2& p) const {
+  const Reach reach = check_reach(p);
+  return reach == Reach::ok ? std::string() : describe(reach);
+}
+
 Vec2 Mechanism::inverse(const Vec2& p) const {
   const InverseResult r = solve_inverse(p);
   if (r.status != Reach::ok) {
     throw Error(fmt::format("point (x = {:.4f} mm, y = {:.4f} mm) refused: {}", units::m_to_mm(p.x()),
-                            units::m_to_mm(p.y()), describe(r.status)));
+                            units::m_to_mm(p.y()), explain(p)));
   }
   return r.q;
 }

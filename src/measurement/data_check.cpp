@@ -3,6 +3,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <map>
 #include <tuple>
@@ -136,8 +138,15 @@ DataCheckReport check_displacements(const DisplacementTable& table, const DataCh
     if (s.empty()) order.push_back(key);
     s.push_back(&r);
   }
+  // Quantities the table does not have at all (dz, rx, ry are optional columns) are not checked.
+  std::vector<Quantity> measured;
+  for (Quantity q : kQuantities) {
+    if (std::any_of(table.rows.begin(), table.rows.end(), [&](const DisplacementRow& r) { return value_of(r, q); })) {
+      measured.push_back(q);
+    }
+  }
   for (const auto& key : order) {
-    for (Quantity q : kQuantities) {
+    for (Quantity q : measured) {
       std::vector<double> f, v;
       collect(series[key], q, options, f, v, 1.0);
       LinearityResult l;
@@ -155,7 +164,11 @@ DataCheckReport check_displacements(const DisplacementTable& table, const DataCh
       rep.linearity.push_back(l);
     }
   }
-  rep.symmetry = check_symmetry(table, options, rep.skipped);
+  if (options.mirror_symmetric) {
+    rep.symmetry = check_symmetry(table, options, rep.skipped);
+  } else {
+    rep.skipped.push_back("symmetry: the robot is not its own mirror image about y = 0");
+  }
   check_reciprocity(series, options, rep);
   compare_mechanisms(table, options, rep);
   return rep;

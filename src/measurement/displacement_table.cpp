@@ -4,15 +4,17 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <map>
 #include <set>
 #include <sstream>
 #include <tuple>
 
 #include "stiffpath/core/atomic_file.hpp"
 #include "stiffpath/core/csv.hpp"
-#include "stiffpath/core/embedded.hpp"
 #include "stiffpath/core/error.hpp"
+#include "stiffpath/core/sha256.hpp"
 #include "stiffpath/core/units.hpp"
+#include "stiffpath/measurement/csv_columns.hpp"
 
 namespace stiffpath::measurement {
 
@@ -34,7 +36,8 @@ double direction_y(ForceDirection d) noexcept {
 }
 
 DisplacementTable DisplacementTable::filter(const std::string& mechanism) const {
-  DisplacementTable out{source, {}};
+  if (mechanism.empty()) return *this;
+  DisplacementTable out{source, {}, sha256};
   for (const auto& row : rows) {
     if (row.mechanism == mechanism) out.rows.push_back(row);
   }
@@ -83,43 +86,55 @@ ReadingSpread read_spread(const core::CsvReader& csv, std::size_t c_readings) {
 }
 
 DisplacementTable read_table(core::CsvReader& csv, const std::string& source) {
-  const auto c_mech = csv.column("mechanism"), c_dir = csv.column("direction"), c_point = csv.column("point");
-  const auto c_x = csv.column("x_mm"), c_y = csv.column("y_mm"), c_step = csv.column("step");
-  const auto c_kgf = csv.column("force_kgf"), c_fn = csv.column("F_N"), c_nom = csv.column("F_nominal_N");
-  const auto c_dx = csv.column("dx_mm"), c_dy = csv.column("dy_mm"), c_dz = csv.column("dz_mm");
-  const auto c_rx = csv.column("rx_deg"), c_ry = csv.column("ry_deg");
+  const int header_line = csv.line();
+  const auto required = [&](std::string_view name) {
+    return require_column(csv, name, header_line, kRequiredDisplacementColumns);
+  };
+  require_unit(csv, header_line, "x", "mm");  // before the required columns: x_m is named as a unit error
+  require_unit(csv, header_line, "y", "mm");
+  const auto c_dir = required("direction"), c_point = required("point");
+  const auto c_x = required("x_mm"), c_y = required("y_mm"), c_fn = required("F_N");
+  const auto c_dx = required("dx_mm"), c_dy = required("dy_mm");
+  const auto c_mech = csv.find_column("mechanism"), c_step = csv.find_column("step");
+  const auto c_kgf = csv.find_column("force_kgf"), c_nom = csv.find_column("F_nominal_N");
+  const auto c_dz = csv.find_column("dz_mm"), c_rx = csv.find_column("rx_deg"), c_ry = csv.find_column("ry_deg");
 
   const auto c_readings = csv.find_column("readings");
-  DisplacementTable table{source, {}};
+  DisplacementTable table{source, {}, {}};
   std::set<std::tuple<std::string, int, std::string, int>> seen;
+  std::map<std::tuple<std::string, int, std::string>, int> series_steps;  // steps numbered when there is no column
   while (csv.next()) {
     DisplacementRow row;
     row.line = csv.line();
-    row.mechanism = std::string(csv.text(c_mech));
-    if (row.mechanism.empty()) csv.fail(c_mech, "value is missing (empty cell)");
+    if (c_mech) row.mechanism = std::string(csv.text(*c_mech));
     row.direction = parse_direction(csv, c_dir);
     row.point = std::string(csv.text(c_point));
     if (row.point.empty()) csv.fail(c_point, "value is missing (empty cell)");
     row.x_m = units::mm_to_m(csv.number(c_x));
     row.y_m = units::mm_to_m(csv.number(c_y));
-    const long step = csv.integer(c_step);
-    if (step < 1) csv.fail(c_step, fmt::format("load step must be 1 or more (step 0 is the reference), got {}", step));
-    row.step = static_cast<int>(step);
-    row.force_kgf = csv.number(c_kgf);
+    if (c_step) {
+      const long step = csv.integer(*c_step);
+      if (step < 1) csv.fail(*c_step, fmt::format("load step must be 1 or more (step 0 is the reference), got {}", step));
+      row.step = static_cast<int>(step);
+    } else {
+      row.step = ++series_steps[{row.mechanism, static_cast<int>(row.direction), row.point}];
+    }
     row.force_N = csv.number(c_fn);
     if (!(row.force_N > 0.0)) csv.fail(c_fn, fmt::format("force must be positive, got {}", row.force_N));
-    row.nominal_force_N = csv.number(c_nom);
+    row.force_kgf = c_kgf ? csv.number(*c_kgf) : row.force_N / units::standard_gravity_m_s2;
+    row.nominal_force_N = c_nom ? csv.number(*c_nom) : row.force_N;
     row.dx_m = scaled(csv, c_dx, 1e-3);
     row.dy_m = scaled(csv, c_dy, 1e-3);
-    row.dz_m = scaled(csv, c_dz, 1e-3);
-    row.rx_rad = scaled(csv, c_rx, units::deg_to_rad(1.0));
-    row.ry_rad = scaled(csv, c_ry, units::deg_to_rad(1.0));
+    if (c_dz) row.dz_m = scaled(csv, *c_dz, 1e-3);
+    if (c_rx) row.rx_rad = scaled(csv, *c_rx, units::deg_to_rad(1.0));
+    if (c_ry) row.ry_rad = scaled(csv, *c_ry, units::deg_to_rad(1.0));
     if (c_readings && !csv.text(*c_readings).empty()) row.spread = read_spread(csv, *c_readings);
     const auto key = std::make_tuple(row.mechanism, static_cast<int>(row.direction), row.point, row.step);
     if (!seen.insert(key).second) {
       throw Error(csv.where(),
-                  fmt::format("duplicated row: mechanism {}, direction {}, point {}, step {} appears twice",
-                              row.mechanism, to_string(row.direction), row.point, row.step));
+                  fmt::format("duplicated row: {}direction {}, point {}, step {} appears twice",
+                              row.mechanism.empty() ? "" : "mechanism " + row.mechanism + ", ",
+                              to_string(row.direction), row.point, row.step));
     }
     table.rows.push_back(std::move(row));
   }
@@ -132,16 +147,19 @@ std::string cell(const std::optional<double>& v, double factor, int decimals) {
 }
 }  // namespace
 
+core::DataRef thesis_dataset() { return {"thesis/displacements.csv", true}; }
+
+DisplacementTable load_displacement_table(const core::DataRef& file) {
+  const std::string bytes = core::read_data(file);
+  std::istringstream in(bytes);
+  core::CsvReader csv(in, file.label());
+  DisplacementTable table = read_table(csv, file.label());
+  table.sha256 = core::sha256_hex(bytes);
+  return table;
+}
+
 DisplacementTable load_displacement_table(const std::string& path) {
-  if (path == "thesis") {
-    const auto text = core::find_embedded("thesis/displacements.csv");
-    if (!text) throw Error("the thesis data set is not built into this binary");
-    std::istringstream in{std::string(*text)};
-    core::CsvReader csv(in, "thesis/displacements.csv");
-    return read_table(csv, "thesis");
-  }
-  core::CsvReader csv(path);
-  return read_table(csv, path);
+  return load_displacement_table(core::parse_data_ref(path));
 }
 
 void save_displacement_table(const DisplacementTable& table, const std::string& path) {

@@ -6,7 +6,6 @@
 #include <tuple>
 
 #include "stiffpath/core/csv.hpp"
-#include "stiffpath/core/embedded.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/core/units.hpp"
 #include "stiffpath/measurement/csv_columns.hpp"
@@ -70,16 +69,14 @@ std::vector<PositioningTrial> read(core::CsvReader& csv) {
 
 }  // namespace
 
-std::vector<PositioningTrial> load_trials(const std::string& path) {
-  if (path == "thesis") {
-    const auto text = core::find_embedded("thesis/repeatability.csv");
-    if (!text) throw Error("the thesis repeatability data are not built into this binary");
-    std::istringstream in{std::string(*text)};
-    core::CsvReader csv(in, "thesis/repeatability.csv");
-    return read(csv);
-  }
-  core::CsvReader csv(path);
+core::DataRef thesis_repeatability() { return {"thesis/repeatability.csv", true}; }
+
+std::vector<PositioningTrial> load_trials(const core::DataRef& file) {
+  std::istringstream in{core::read_data(file)};
+  core::CsvReader csv(in, file.label());
   return read(csv);
 }
+
+std::vector<PositioningTrial> load_trials(const std::string& path) { return load_trials(core::parse_data_ref(path)); }
 
 }  // namespace stiffpath::measurement

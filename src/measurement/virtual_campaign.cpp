@@ -21,6 +21,14 @@ constexpr std::array<Field, 5> kFields = {&DisplacementRow::dx_m, &DisplacementR
                                           &DisplacementRow::rx_rad, &DisplacementRow::ry_rad};
 constexpr std::array<const char*, 5> kFieldNames = {"dx_mm", "dy_mm", "dz_mm", "rx_deg", "ry_deg"};
 
+std::array<bool, 5> present(const DisplacementTable& table) {
+  std::array<bool, 5> in_table{};
+  for (const auto& r : table.rows) {
+    for (std::size_t f = 0; f < kFields.size(); ++f) in_table[f] = in_table[f] || (r.*kFields[f]).has_value();
+  }
+  return in_table;
+}
+
 void check_options(const VirtualCampaignOptions& o) {
   if (o.readings_per_step < 1 || o.readings_per_step > 1000) throw Error("readings per step must be 1 … 1000");
   if (!(o.noise_sigma_m >= 0.0) || !std::isfinite(o.noise_sigma_m)) throw Error("noise σ must be >= 0");
@@ -86,10 +94,16 @@ DisplacementTable linear_truth(const DisplacementTable& table) {
       }
     }
   }
-  DisplacementTable out{table.source, table.rows};
+  // A quantity the table does not have at all (dz, rx, ry are optional columns) is taken as zero.
+  const std::array<bool, 5> in_table = present(table);
+  DisplacementTable out{table.source, table.rows, {}};
   for (auto& r : out.rows) {
     const auto& s = sums.at(Key{r.mechanism, static_cast<int>(r.direction), r.point});
     for (std::size_t f = 0; f < kFields.size(); ++f) {
+      if (!in_table[f]) {
+        r.*kFields[f] = 0.0;
+        continue;
+      }
       if (s[f].second <= 0.0) {
         throw Error(SourceLocation{table.source, r.line, 0},
                     fmt::format("column '{}': no value at all for {} {} {}", kFieldNames[f], r.mechanism,
@@ -98,6 +112,27 @@ DisplacementTable linear_truth(const DisplacementTable& table) {
       r.*kFields[f] = r.force_N * s[f].first / s[f].second;
     }
     r.spread.reset();
+  }
+  return out;
+}
+
+bool has_gaps(const DisplacementTable& table) {
+  const auto in_table = present(table);
+  for (const auto& r : table.rows) {
+    for (std::size_t f = 0; f < kFields.size(); ++f) {
+      if (in_table[f] && !(r.*kFields[f])) return true;
+    }
+  }
+  return false;
+}
+
+DisplacementTable zero_absent_quantities(const DisplacementTable& table) {
+  const auto in_table = present(table);
+  DisplacementTable out = table;
+  for (auto& r : out.rows) {
+    for (std::size_t f = 0; f < kFields.size(); ++f) {
+      if (!in_table[f]) r.*kFields[f] = 0.0;
+    }
   }
   return out;
 }

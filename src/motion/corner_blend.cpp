@@ -99,7 +99,8 @@ std::optional<PathSegment> CornerBlender::next() {
                                   : make_arc(keep_line ? fillet->entry_m : a.start_m, fillet->exit_m, fillet->center_m,
                                              fillet->sweep_rad);
       arc.feed_m_s = std::min(a.feed_m_s, b.feed_m_s);
-      arc.laser_power = a.laser_power;
+      arc.power = a.power;
+      arc.dynamic_power = a.dynamic_power;
       arc.blend_tolerance_m = a.blend_tolerance_m;
       arc.line = a.line;
       arc.rapid = a.rapid;

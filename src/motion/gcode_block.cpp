@@ -1,4 +1,4 @@
-// Sorting a line's words into modal groups; every unsupported or duplicated word is an error naming it.
+// Sorting a line's words into modal groups; every unsupported or duplicated word is a refusal naming it.
 #include "gcode_block.hpp"
 
 #include <cmath>
@@ -13,19 +13,44 @@ int code_tenths(double value) noexcept {
   return static_cast<int>(rounded);
 }
 
-void GcodeBlock::fail(const GcodeWord& word, const std::string& message) const {
-  throw Error(SourceLocation{where->file, where->line, word.column}, word_name(word) + ": " + message);
+Error GcodeBlock::error(const GcodeWord& word, const std::string& message) const {
+  return Error(SourceLocation{where->file, where->line, word.column}, word_name(word) + ": " + message);
 }
+
+void GcodeBlock::fail(const GcodeWord& word, const std::string& message) const { throw error(word, message); }
 
 namespace {
 
-void assign(const GcodeBlock& block, const GcodeWord*& slot, const GcodeWord& word, const char* group) {
-  if (slot != nullptr) {
-    block.fail(word, std::string("a second ") + group + " word on one line (" + word_name(*slot) + " at column " +
-                         std::to_string(slot->column) + ")");
+// The words of one line being sorted, and the refusals found so far.
+struct Sorter {
+  GcodeBlock& block;
+  bool strict;
+  std::vector<Error>& refusals;
+
+  void refuse(const GcodeWord& word, const std::string& message) { refusals.push_back(block.error(word, message)); }
+
+  void assign(const GcodeWord*& slot, const GcodeWord& word, const char* group) {
+    if (slot != nullptr) {
+      refuse(word, std::string("a second ") + group + " word on one line (" + word_name(*slot) + " at column " +
+                       std::to_string(slot->column) + ")");
+      return;
+    }
+    slot = &word;
   }
-  slot = &word;
-}
+
+  void value(const GcodeWord*& slot, const GcodeWord& word) {
+    if (slot != nullptr) {
+      refuse(word, std::string(1, word.letter) + " is given twice on one line (also at column " +
+                       std::to_string(slot->column) + ")");
+      return;
+    }
+    slot = &word;
+  }
+
+  void g(const GcodeWord& word);
+  void m(const GcodeWord& word);
+  void word(const GcodeWord& word);
+};
 
 const char* unsupported_g(int code) {
   switch (code) {
@@ -37,72 +62,93 @@ const char* unsupported_g(int code) {
     case 550: case 560: case 570: case 580: case 590: case 591: case 592: case 593:
       return "only the G54 work offset is supported (its origin comes from the configuration)";
     case 930: case 950: return "only feed in units per minute (G94) is supported";
-    case 280: case 300: return "homing moves are not supported";
+    case 281: case 301: return "the home position comes from the robot, not from the program";
     case 530: return "machine coordinates are not supported";
-    case 901: case 911: return "arc centre modes are not supported (I and J are always relative to the start)";
+    case 901: return "arc centre modes are not supported (I and J are always relative to the start)";
     default: return "unsupported G code";
   }
 }
 
-void add_g(GcodeBlock& block, const GcodeWord& word) {
-  const int code = code_tenths(word.value);
+void Sorter::g(const GcodeWord& w) {
+  const int code = code_tenths(w.value);
   switch (code) {
-    case 0: case 10: case 20: case 30: assign(block, block.motion, word, "motion"); return;
-    case 40: case 920: assign(block, block.non_modal, word, "non-modal (G4/G92)"); return;
-    case 200: case 210: assign(block, block.units, word, "units (G20/G21)"); return;
-    case 900: case 910: assign(block, block.distance, word, "distance mode (G90/G91)"); return;
-    case 610: case 611: case 640: assign(block, block.path_mode, word, "path control (G61/G64)"); return;
+    case 0: case 10: case 20: case 30: assign(block.motion, w, "motion"); return;
+    case 40: case 920: assign(block.non_modal, w, "non-modal (G4/G28/G30/G92)"); return;
+    case 280: case 300:
+      if (strict) return refuse(w, "homing moves are not supported");
+      assign(block.non_modal, w, "non-modal (G4/G28/G30/G92)");
+      return;
+    case 200: case 210: assign(block.units, w, "units (G20/G21)"); return;
+    case 900: case 910: assign(block.distance, w, "distance mode (G90/G91)"); return;
+    case 610: case 611: case 640: assign(block.path_mode, w, "path control (G61/G64)"); return;
     case 170: case 400: case 490: case 540: case 800: case 940: return;  // the defaults: nothing to do
-    default: block.fail(word, unsupported_g(code));
+    case 911:  // incremental arc centres: what I and J always are
+      if (strict) refuse(w, "arc centre modes are not supported (I and J are always relative to the start)");
+      return;
+    default: refuse(w, unsupported_g(code));
   }
 }
 
-void add_m(GcodeBlock& block, const GcodeWord& word) {
-  switch (code_tenths(word.value)) {
-    case 30: case 40: case 50: assign(block, block.spindle, word, "laser (M3/M4/M5)"); return;
-    case 20: case 300: assign(block, block.stop, word, "program end (M2/M30)"); return;
+void Sorter::m(const GcodeWord& w) {
+  const int code = code_tenths(w.value);
+  switch (code) {
+    case 30: case 40: case 50: assign(block.laser, w, "laser (M3/M4/M5)"); return;
+    case 1060: case 1070: case 620: case 630:
+      if (strict) return refuse(w, "unsupported M code");
+      assign(block.laser, w, "laser (M3/M4/M5/M106/M107/M62/M63)");
+      return;
+    case 20: case 300: assign(block.stop, w, "program end (M2/M30)"); return;
     case 70: case 80: case 90: return;  // coolant / air assist: no effect on the motion
-    case 0: case 10: block.fail(word, "program pauses are not supported");
-    case 60: block.fail(word, "tool changes are not supported");
-    default: block.fail(word, "unsupported M code");
+    case 0: case 10:
+      if (strict) return refuse(w, "program pauses are not supported");
+      assign(block.pause, w, "program stop (M0/M1)");
+      return;
+    case 60:
+      if (strict) return refuse(w, "tool changes are not supported");
+      block.tool = true;
+      return;
+    default: refuse(w, "unsupported M code");
   }
 }
 
-void add_value(GcodeBlock& block, const GcodeWord*& slot, const GcodeWord& word) {
-  if (slot != nullptr) {
-    block.fail(word, std::string(1, word.letter) + " is given twice on one line (also at column " +
-                         std::to_string(slot->column) + ")");
+void Sorter::word(const GcodeWord& w) {
+  switch (w.letter) {
+    case 'G': g(w); break;
+    case 'M': m(w); break;
+    case 'X': value(block.x, w); break;
+    case 'Y': value(block.y, w); break;
+    case 'I': value(block.i, w); break;
+    case 'J': value(block.j, w); break;
+    case 'R': value(block.r, w); break;
+    case 'F': value(block.f, w); break;
+    case 'S': value(block.s, w); break;
+    case 'P': value(block.p, w); break;
+    case 'N': break;  // line number
+    case 'Z':
+      if (strict) return refuse(w, "the robot moves in the XY plane only (no Z axis)");
+      value(block.z, w);
+      break;
+    case 'T':
+      if (strict) return refuse(w, "tool selection is not supported");
+      block.tool = true;
+      break;
+    case 'O':
+      if (strict) refuse(w, "program numbers and subroutines are not supported");
+      break;  // a program number: nothing to do
+    case 'A': case 'B': case 'C': case 'U': case 'V': case 'W': refuse(w, "only the X and Y axes exist"); break;
+    case 'K': refuse(w, "arcs are in the XY plane; give their centre with I and J"); break;
+    default: refuse(w, "unsupported word");
   }
-  slot = &word;
 }
 
 }  // namespace
 
-GcodeBlock parse_block(std::span<const GcodeWord> words, const SourceLocation& where) {
+GcodeBlock parse_block(std::span<const GcodeWord> words, const SourceLocation& where, bool strict,
+                       std::vector<Error>& refusals) {
   GcodeBlock block;
   block.where = &where;
-  for (const GcodeWord& word : words) {
-    switch (word.letter) {
-      case 'G': add_g(block, word); break;
-      case 'M': add_m(block, word); break;
-      case 'X': add_value(block, block.x, word); break;
-      case 'Y': add_value(block, block.y, word); break;
-      case 'I': add_value(block, block.i, word); break;
-      case 'J': add_value(block, block.j, word); break;
-      case 'R': add_value(block, block.r, word); break;
-      case 'F': add_value(block, block.f, word); break;
-      case 'S': add_value(block, block.s, word); break;
-      case 'P': add_value(block, block.p, word); break;
-      case 'N': break;  // line number
-      case 'Z': block.fail(word, "the robot moves in the XY plane only (no Z axis)");
-      case 'A': case 'B': case 'C': case 'U': case 'V': case 'W':
-        block.fail(word, "only the X and Y axes exist");
-      case 'K': block.fail(word, "arcs are in the XY plane; give their centre with I and J");
-      case 'T': block.fail(word, "tool selection is not supported");
-      case 'O': block.fail(word, "program numbers and subroutines are not supported");
-      default: block.fail(word, "unsupported word");
-    }
-  }
+  Sorter sorter{block, strict, refusals};
+  for (const GcodeWord& word : words) sorter.word(word);
   return block;
 }
 

@@ -2,6 +2,8 @@
 #pragma once
 
 #include <span>
+#include <string>
+#include <vector>
 
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/motion/gcode_lexer.hpp"
@@ -14,29 +16,37 @@ int code_tenths(double value) noexcept;
 //! The words of one line by role; null where absent. Pointers into the lexer's word vector.
 struct GcodeBlock {
   const GcodeWord* motion = nullptr;      //!< G0, G1, G2, G3
-  const GcodeWord* non_modal = nullptr;   //!< G4 (dwell) or G92 (coordinate offset)
+  const GcodeWord* non_modal = nullptr;   //!< G4 (dwell), G28/G30 (home), G92 (coordinate offset)
   const GcodeWord* units = nullptr;       //!< G20, G21
   const GcodeWord* distance = nullptr;    //!< G90, G91
   const GcodeWord* path_mode = nullptr;   //!< G61, G61.1, G64
-  const GcodeWord* spindle = nullptr;     //!< M3, M4, M5
+  const GcodeWord* laser = nullptr;       //!< M3, M4, M5, M106, M107, M62, M63
   const GcodeWord* stop = nullptr;        //!< M2, M30
+  const GcodeWord* pause = nullptr;       //!< M0, M1
   const GcodeWord* x = nullptr;
   const GcodeWord* y = nullptr;
+  const GcodeWord* z = nullptr;           //!< read only to tell a move with Z from a line without one
   const GcodeWord* i = nullptr;
   const GcodeWord* j = nullptr;
   const GcodeWord* r = nullptr;
   const GcodeWord* f = nullptr;
   const GcodeWord* s = nullptr;
   const GcodeWord* p = nullptr;
+  bool tool = false;                      //!< a T word or M6 (ignored)
   const SourceLocation* where = nullptr;  //!< file and line (column 0); outlives the block
 
-  //! Throws Error at the word's column: "<word>: message".
+  //! The Error at the word's column: "<word>: message".
+  [[nodiscard]] Error error(const GcodeWord& word, const std::string& message) const;
+  //! Throws error(word, message).
   [[noreturn]] void fail(const GcodeWord& word, const std::string& message) const;
   [[nodiscard]] bool has_axis() const noexcept { return x != nullptr || y != nullptr; }
 };
 
-//! Sorts the words; throws for an unsupported or duplicated word (a second motion word, two words
-//! of one modal group, an axis given twice, other planes, cutter compensation, canned cycles …).
-GcodeBlock parse_block(std::span<const GcodeWord> words, const SourceLocation& where);
+//! Sorts the words. Every unsupported or duplicated word (a second motion word, two words of one
+//! modal group, an axis given twice, other planes, cutter compensation, canned cycles …, and in
+//! `strict` mode Z, T, O, M6, M0/M1, G28/G30, G91.1, M106/M107, M62/M63) is appended to `refusals`,
+//! one per word; the block is only meant to be executed when none was added.
+GcodeBlock parse_block(std::span<const GcodeWord> words, const SourceLocation& where, bool strict,
+                       std::vector<Error>& refusals);
 
 }  // namespace stiffpath::motion::detail

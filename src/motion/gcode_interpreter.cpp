@@ -1,7 +1,9 @@
-// The G-code modal state machine: units, feed, laser, path control, distance mode, G92, dwells and moves.
+// The G-code modal state machine: units, feed, laser, path control, distance mode, homes, G92, dwells, moves and stops.
 #include "gcode_interpreter.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <fmt/format.h>
 #include <limits>
 
 namespace stiffpath::motion {
@@ -11,57 +13,80 @@ using detail::GcodeBlock;
 
 namespace {
 constexpr double inch_m = 0.0254;
+constexpr double max_coordinate_mm = max_coordinate_m * 1e3;
 }  // namespace
 
-GcodeInterpreter::GcodeInterpreter(const GcodeOptions& options)
+GcodeInterpreter::GcodeInterpreter(const GcodeOptions& options, GcodeWarnings& warnings)
     : options_(options),
+      warnings_(warnings),
       mode_(options.initial_mode),
       blend_tolerance_m_(options.default_blend_tolerance_m),
       position_m_(options.start_position_m) {}
 
-std::optional<PathSegment> GcodeInterpreter::execute(const GcodeBlock& b) {
+void GcodeInterpreter::warn(GcodeWarningKind kind, const GcodeBlock& b, const std::string& message) {
+  warnings_.add(kind, b.where->line, message);
+}
+
+void GcodeInterpreter::execute(const GcodeBlock& b, std::deque<PathSegment>& out) {
   if (b.units != nullptr) scale_m_ = code_tenths(b.units->value) == 200 ? inch_m : 1e-3;
-  if (b.f != nullptr) {
-    if (!(b.f->value > 0.0)) b.fail(*b.f, "feed rate must be positive");
-    feed_m_s_ = b.f->value * scale_m_ / 60.0;  // units per minute
+  set_feed(b);
+  set_laser(b);
+  if (b.tool) warn(GcodeWarningKind::tool_ignored, b, "tool selection (T) and tool changes (M6) are ignored");
+  if (b.z != nullptr) {
+    warn(GcodeWarningKind::z_ignored, b, "Z words are ignored (the robot has no Z axis); a move with only Z takes no time");
   }
-  if (b.s != nullptr) {
-    if (b.s->value < 0.0) b.fail(*b.s, "laser power must not be negative");
-    power_ = b.s->value;
-  }
-  if (b.spindle != nullptr) laser_ = code_tenths(b.spindle->value) != 50;
   set_modes(b);
 
-  std::optional<PathSegment> segment;
   bool arc_move = false;
+  const int non_modal = b.non_modal != nullptr ? code_tenths(b.non_modal->value) : -1;
   if (b.non_modal != nullptr) {
     if (b.motion != nullptr) b.fail(*b.motion, "cannot share a line with " + word_name(*b.non_modal));
-    if (code_tenths(b.non_modal->value) == 40) {
-      segment = dwell(b);
+    if (non_modal == 40) {
+      dwell(b, out);
+    } else if (non_modal == 280 || non_modal == 300) {
+      home(b, out);
     } else {
       set_offset(b);
     }
   } else {
     if (b.motion != nullptr) motion_ = code_tenths(b.motion->value);
     const bool arc_mode = motion_ == 20 || motion_ == 30;
-    const bool moves = b.has_axis() || (arc_mode && b.motion != nullptr && (b.i || b.j || b.r));
+    const bool centre = b.i != nullptr || b.j != nullptr || b.r != nullptr;
+    // X or Y move; so does an arc given only its centre (a full circle, also as a helix with Z).
+    // A line with only Z moves nothing in XY and takes no time.
+    const bool moves = b.has_axis() || (arc_mode && centre && (b.motion != nullptr || b.z != nullptr));
     if (moves) {
-      const GcodeWord& anchor = b.motion != nullptr ? *b.motion : (b.x != nullptr ? *b.x : *b.y);
+      const GcodeWord& anchor = b.motion != nullptr ? *b.motion : (b.x != nullptr ? *b.x : (b.y != nullptr ? *b.y : *b.z));
       if (motion_ < 0) b.fail(anchor, "no motion mode is active (G0, G1, G2 or G3 must come first)");
       arc_move = arc_mode;
-      segment = move(b, anchor);
+      move(b, anchor, out);
     }
   }
   for (const GcodeWord* word : {b.i, b.j, b.r}) {
     if (word != nullptr && !arc_move) b.fail(*word, "I, J and R belong to G2/G3 arc moves");
   }
   if (b.p != nullptr) {
-    const int nm = b.non_modal != nullptr ? code_tenths(b.non_modal->value) : -1;
     const int pm = b.path_mode != nullptr ? code_tenths(b.path_mode->value) : -1;
-    if (nm != 40 && pm != 640) b.fail(*b.p, "P belongs to G4 (dwell seconds) or G64 (blend tolerance)");
+    const int laser = b.laser != nullptr ? code_tenths(b.laser->value) : -1;
+    if (non_modal != 40 && pm != 640 && laser != 620 && laser != 630) {
+      b.fail(*b.p, "P belongs to G4 (dwell), G64 (blend tolerance) or M62/M63 (output number)");
+    }
   }
+  program_stop(b, out);
   if (b.stop != nullptr) ended_ = true;
-  return segment;
+}
+
+void GcodeInterpreter::set_feed(const GcodeBlock& b) {
+  if (b.f == nullptr) return;
+  if (!(b.f->value > 0.0)) b.fail(*b.f, "feed rate must be positive");
+  const double mm_min = b.f->value * scale_m_ * 1e3;
+  if (mm_min < min_feed_mm_min) {
+    b.fail(*b.f, fmt::format("feed {:g} mm/min is below the slowest accepted, {:g} mm/min", mm_min, min_feed_mm_min));
+  }
+  if (mm_min > max_feed_mm_min) {
+    b.fail(*b.f, fmt::format("feed {:g} mm/min is above the fastest accepted, {:.0f} mm/min", mm_min, max_feed_mm_min));
+  }
+  feed_m_s_ = b.f->value * scale_m_ / 60.0;  // units per minute
 }
 
 void GcodeInterpreter::set_modes(const GcodeBlock& b) {
@@ -71,6 +96,9 @@ void GcodeInterpreter::set_modes(const GcodeBlock& b) {
       blend_tolerance_m_ = options_.default_blend_tolerance_m;
       if (b.p != nullptr) {
         if (b.p->value < 0.0) b.fail(*b.p, "blend tolerance must not be negative");
+        if (b.p->value * scale_m_ > max_blend_tolerance_m) {
+          b.fail(*b.p, fmt::format("blend tolerance above the largest accepted, {:g} mm", max_blend_tolerance_m * 1e3));
+        }
         blend_tolerance_m_ = b.p->value * scale_m_;
       }
     } else {
@@ -80,24 +108,50 @@ void GcodeInterpreter::set_modes(const GcodeBlock& b) {
   if (b.distance != nullptr) incremental_ = code_tenths(b.distance->value) == 910;
 }
 
-std::optional<PathSegment> GcodeInterpreter::dwell(const GcodeBlock& b) {
-  if (b.p == nullptr) b.fail(*b.non_modal, "a dwell needs P (seconds)");
+void GcodeInterpreter::dwell(const GcodeBlock& b, std::deque<PathSegment>& out) {
+  const bool ms = options_.dwell_p_units == DwellUnits::milliseconds;
+  const char* units = ms ? "milliseconds" : "seconds";
+  if (b.p == nullptr) b.fail(*b.non_modal, fmt::format("a dwell needs P ({})", units));
   if (b.p->value < 0.0) b.fail(*b.p, "dwell time must not be negative");
-  if (!position_m_ || b.p->value == 0.0) return std::nullopt;  // before the first move nothing is timed
-  PathSegment segment = make_dwell(*position_m_, b.p->value);
-  decorate(segment, b.where->line);
-  segment.laser_on = laser_ && power_ > 0.0;
+  const double seconds = ms ? b.p->value * 1e-3 : b.p->value;
+  if (seconds > max_block_duration_s) {
+    b.fail(*b.p, fmt::format("a dwell of {:g} s is longer than the longest block accepted, {:g} s (P is read in {})",
+                             seconds, max_block_duration_s, units));
+  }
+  if (seconds > long_dwell_warning_s) {
+    warn(GcodeWarningKind::long_dwell, b, fmt::format("a dwell of {:g} s, over a minute (G4 P is read in {})", seconds, units));
+  }
+  if (!position_m_ || seconds == 0.0) return;  // before the first move nothing is timed
+  PathSegment segment = make_dwell(*position_m_, seconds);
   segment.mode = JunctionMode::exact_stop;
-  return segment;
+  emit(segment, b, out);
 }
 
 void GcodeInterpreter::set_offset(const GcodeBlock& b) {
-  if (!b.has_axis()) b.fail(*b.non_modal, "G92 needs X and/or Y");
+  if (!b.has_axis()) {
+    if (b.z != nullptr) return;  // G92 Z: the robot has no Z axis
+    b.fail(*b.non_modal, "G92 needs X and/or Y");
+  }
   if (!position_m_) {
     b.fail(*b.non_modal, "the current position is unknown (give the start position, or move before G92)");
   }
-  if (b.x != nullptr) offset_m_.x() = position_m_->x() - options_.work_offset_m.x() - b.x->value * scale_m_;
-  if (b.y != nullptr) offset_m_.y() = position_m_->y() - options_.work_offset_m.y() - b.y->value * scale_m_;
+  const GcodeWord* words[2] = {b.x, b.y};
+  for (int k = 0; k < 2; ++k) {
+    if (words[k] == nullptr) continue;
+    const double v = words[k]->value * scale_m_;
+    if (std::abs(v) > max_coordinate_m) {
+      b.fail(*words[k], fmt::format("coordinate beyond ±{:g} mm, the largest accepted", max_coordinate_mm));
+    }
+    offset_m_[k] = (*position_m_)[k] - options_.work_offset_m[k] - v;
+  }
+}
+
+void GcodeInterpreter::require_start(const GcodeBlock& b, const GcodeWord& anchor) const {
+  if (position_m_) return;
+  if (incremental_) b.fail(anchor, "an incremental (G91) first move needs a known start position");
+  if (b.x == nullptr || b.y == nullptr) {
+    b.fail(anchor, "the first move must give both X and Y (the start position is unknown)");
+  }
 }
 
 Vec2 GcodeInterpreter::target(const GcodeBlock& b) const {
@@ -106,22 +160,56 @@ Vec2 GcodeInterpreter::target(const GcodeBlock& b) const {
   for (int k = 0; k < 2; ++k) {
     if (words[k] == nullptr) continue;
     const double v = words[k]->value * scale_m_;
+    if (std::abs(v) > max_coordinate_m) {
+      b.fail(*words[k], fmt::format("coordinate beyond ±{:g} mm, the largest accepted", max_coordinate_mm));
+    }
     p[k] = incremental_ ? p[k] + v : v + options_.work_offset_m[k] + offset_m_[k];
+    if (std::abs(p[k]) > max_coordinate_m) {
+      b.fail(*words[k], fmt::format("moves to {:g} mm in the robot frame, beyond ±{:g} mm, the largest accepted",
+                                    p[k] * 1e3, max_coordinate_mm));
+    }
   }
   return p;
 }
 
-std::optional<PathSegment> GcodeInterpreter::move(const GcodeBlock& b, const GcodeWord& anchor) {
+void GcodeInterpreter::rapid_to(const Vec2& end, const GcodeBlock& b, std::deque<PathSegment>& out) {
+  if (!position_m_) {  // the robot is assumed to stand there already
+    position_m_ = end;
+    return;
+  }
+  if ((end - *position_m_).norm() < shortest_segment_m) return;
+  PathSegment segment = make_line(*position_m_, end);
+  segment.rapid = true;
+  position_m_ = end;
+  emit(segment, b, out);
+}
+
+void GcodeInterpreter::home(const GcodeBlock& b, std::deque<PathSegment>& out) {
+  if (!b.has_axis() && b.z != nullptr) return;  // G28 Z…: only Z goes home, and the robot has none
+  if (!options_.home_position_m) {
+    b.fail(*b.non_modal, "the robot's home position is not set (home_mm in the robot file)");
+  }
+  const Vec2& home = *options_.home_position_m;
+  if (b.has_axis()) {  // through the intermediate point; then only the named axes go home
+    require_start(b, *b.non_modal);
+    rapid_to(target(b), b, out);
+    Vec2 end = *position_m_;
+    if (b.x != nullptr) end.x() = home.x();
+    if (b.y != nullptr) end.y() = home.y();
+    rapid_to(end, b, out);
+  } else {
+    rapid_to(home, b, out);
+  }
+}
+
+void GcodeInterpreter::move(const GcodeBlock& b, const GcodeWord& anchor, std::deque<PathSegment>& out) {
   const bool rapid = motion_ == 0, arc = motion_ == 20 || motion_ == 30;
   if (!rapid && !feed_m_s_) b.fail(anchor, "no feed rate (F) has been programmed");
   if (!position_m_) {  // the robot is assumed to stand at the first absolute target
     if (arc) b.fail(anchor, "an arc cannot be the first move: its start point is unknown (move there first)");
-    if (incremental_) b.fail(anchor, "an incremental (G91) first move needs a known start position");
-    if (b.x == nullptr || b.y == nullptr) {
-      b.fail(anchor, "the first move must give both X and Y (the start position is unknown)");
-    }
+    require_start(b, anchor);
     position_m_ = target(b);
-    return std::nullopt;
+    return;
   }
   const Vec2 start = *position_m_;
   const Vec2 end = target(b);
@@ -130,22 +218,47 @@ std::optional<PathSegment> GcodeInterpreter::move(const GcodeBlock& b, const Gco
     segment = build_arc(b, anchor, motion_ == 20, start, end, scale_m_, options_.arc_tolerance_m);
   } else {
     // A move below 1 nm is dropped; the position stays, so the next move starts where the last ended.
-    if ((end - start).norm() < shortest_segment_m) return std::nullopt;
+    if ((end - start).norm() < shortest_segment_m) return;
     segment = make_line(start, end);
+  }
+  if (!rapid && segment.length_m / *feed_m_s_ > max_block_duration_s) {
+    b.fail(anchor, fmt::format("a move of {:g} mm at {:g} mm/min lasts {:g} s, longer than the longest block accepted, {:g} s",
+                               segment.length_m * 1e3, *feed_m_s_ * 6e4, segment.length_m / *feed_m_s_,
+                               max_block_duration_s));
   }
   position_m_ = segment.end_m;
   segment.rapid = rapid;
   segment.feed_m_s = rapid ? std::numeric_limits<double>::infinity() : *feed_m_s_;
-  decorate(segment, b.where->line);
-  return segment;
+  emit(segment, b, out);
 }
 
-void GcodeInterpreter::decorate(PathSegment& segment, int line) const {
-  segment.line = line;
-  segment.laser_power = power_;
-  segment.laser_on = laser_ && power_ > 0.0 && !segment.rapid;
-  segment.mode = mode_;
+void GcodeInterpreter::program_stop(const GcodeBlock& b, std::deque<PathSegment>& out) {
+  if (b.pause == nullptr) return;
+  const auto& dwell_s = options_.program_stop_dwell_s;
+  warn(GcodeWarningKind::program_stop, b,
+       dwell_s ? fmt::format("M0/M1 are taken as a dwell of {:g} s with the laser off", *dwell_s)
+               : std::string("M0/M1: the robot comes to rest and the job goes on at once (the pause is not in the output)"));
+  if (!position_m_) return;
+  PathSegment segment = make_dwell(*position_m_, dwell_s.value_or(0.0));
+  segment.line = b.where->line;
+  segment.mode = JunctionMode::exact_stop;
+  out.push_back(segment);  // laser off, power 0
+}
+
+void GcodeInterpreter::emit(PathSegment segment, const GcodeBlock& b, std::deque<PathSegment>& out) {
+  const double power = power_fraction();
+  segment.line = b.where->line;
+  segment.laser_on = laser_ != Laser::off && power > 0.0 && !segment.rapid;
+  segment.power = segment.laser_on ? power : 0.0;
+  segment.dynamic_power = segment.laser_on && dynamic_;
+  if (segment.kind != SegmentKind::dwell) {
+    segment.mode = mode_;
+    if (laser_ != Laser::off && power == 0.0 && !segment.rapid) {
+      warn(GcodeWarningKind::laser_without_power, b, "a feed move with the laser on at S0: the laser does not fire");
+    }
+  }
   segment.blend_tolerance_m = blend_tolerance_m_;
+  out.push_back(segment);
 }
 
 }  // namespace stiffpath::motion

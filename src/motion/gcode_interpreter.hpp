@@ -1,6 +1,8 @@
-// Internal: the G-code modal state machine that turns one block into at most one path segment.
+// Internal: the G-code modal state machine that turns one block into path segments.
 #pragma once
 
+#include <cstdint>
+#include <deque>
 #include <optional>
 
 #include "gcode_block.hpp"
@@ -8,31 +10,45 @@
 
 namespace stiffpath::motion {
 
-//! Modal state of a program and the rules that execute a block (RS274/NGC order: feed, power,
-//! laser, units, path mode, distance mode, dwell, G92, motion, program end).
+//! Modal state of a program and the rules that execute a block (RS274/NGC order: units, feed,
+//! power, tool, laser, path mode, distance mode, dwell, G28/G30 or G92, motion, stop, program end).
 class GcodeInterpreter {
  public:
-  explicit GcodeInterpreter(const GcodeOptions& options);
+  GcodeInterpreter(const GcodeOptions& options, GcodeWarnings& warnings);
 
-  //! Executes one block; returns the segment it produces, if any. Throws Error naming the word.
-  std::optional<PathSegment> execute(const detail::GcodeBlock& block);
+  //! Executes one block, appending the segments it produces (none, one, or two for a G28 through
+  //! an intermediate point, plus a stop) to `out`. Throws Error naming the word.
+  void execute(const detail::GcodeBlock& block, std::deque<PathSegment>& out);
   [[nodiscard]] bool ended() const noexcept { return ended_; }
 
  private:
+  enum class Laser : std::uint8_t { off, s_word, fixed };  // off; M3/M4 (power from S); M106/M62
+
+  void set_feed(const detail::GcodeBlock& block);
+  void set_laser(const detail::GcodeBlock& block);
   void set_modes(const detail::GcodeBlock& block);
-  std::optional<PathSegment> dwell(const detail::GcodeBlock& block);
+  void dwell(const detail::GcodeBlock& block, std::deque<PathSegment>& out);
   void set_offset(const detail::GcodeBlock& block);
-  std::optional<PathSegment> move(const detail::GcodeBlock& block, const GcodeWord& anchor);
+  void home(const detail::GcodeBlock& block, std::deque<PathSegment>& out);
+  void move(const detail::GcodeBlock& block, const GcodeWord& anchor, std::deque<PathSegment>& out);
+  void rapid_to(const Vec2& end, const detail::GcodeBlock& block, std::deque<PathSegment>& out);
+  void program_stop(const detail::GcodeBlock& block, std::deque<PathSegment>& out);
+  void require_start(const detail::GcodeBlock& block, const GcodeWord& anchor) const;
   Vec2 target(const detail::GcodeBlock& block) const;
-  void decorate(PathSegment& segment, int line) const;
+  [[nodiscard]] double power_fraction() const noexcept;
+  void emit(PathSegment segment, const detail::GcodeBlock& block, std::deque<PathSegment>& out);
+  void warn(GcodeWarningKind kind, const detail::GcodeBlock& block, const std::string& message);
 
   GcodeOptions options_;
+  GcodeWarnings& warnings_;
   double scale_m_ = 1e-3;          // program unit in m (G21 mm, G20 inch)
   bool incremental_ = false;       // G91
   int motion_ = -1;                // active motion code in tenths (0, 10, 20, 30); −1 none yet
   std::optional<double> feed_m_s_;
-  double power_ = 0.0;             // S
-  bool laser_ = false;             // M3/M4
+  double s_ = 0.0;                 // S as programmed
+  Laser laser_ = Laser::off;
+  bool dynamic_ = false;           // M4
+  double fixed_power_ = 0.0;       // M106 S / 255, or 1 for M62
   JunctionMode mode_;
   double blend_tolerance_m_;
   Vec2 offset_m_ = Vec2::Zero();   // G92 offset on top of the work offset
@@ -42,7 +58,8 @@ class GcodeInterpreter {
 
 //! Builds the arc of a G2/G3 block from `start` to `end` (robot frame, m) with its I/J or R words
 //! (gcode_arc.cpp). Throws Error naming the word for a missing centre, R with a full circle, a
-//! radius too small for the chord, or an end point off the circle by more than the tolerance.
+//! radius too small for the chord, an end point off the circle by more than the tolerance, I, J, R
+//! or a radius beyond max_arc_radius_m, or an arc reaching beyond max_coordinate_m.
 PathSegment build_arc(const detail::GcodeBlock& block, const GcodeWord& motion, bool clockwise, const Vec2& start,
                       const Vec2& end, double scale_m, double tolerance_m);
 

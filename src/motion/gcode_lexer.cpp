@@ -1,4 +1,4 @@
-// G-code lexer: words with columns, comments in parentheses or after ';', '%' delimiter lines.
+// G-code lexer: words with columns, comments in (nested) parentheses or after ';', '%' delimiter lines.
 #include "stiffpath/motion/gcode_lexer.hpp"
 
 #include <cctype>
@@ -8,10 +8,20 @@
 
 namespace stiffpath::motion {
 
+namespace {
+constexpr std::size_t longest_shown = 24;  // characters of a number quoted in a message
+}  // namespace
+
 std::string word_name(const GcodeWord& word) {
   std::string name(1, word.letter);
+  std::size_t shown = 0;
   for (const char c : word.number) {
-    if (c != ' ' && c != '\t') name += c;
+    if (c == ' ' || c == '\t') continue;
+    if (++shown > longest_shown) {
+      name += "…";
+      break;
+    }
+    name += c;
   }
   return name;
 }
@@ -23,6 +33,7 @@ namespace {
 }
 
 bool blank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+bool letter(char c) { return std::isalpha(static_cast<unsigned char>(c)) != 0; }
 
 // Reads the number after a letter at text[i...]; returns the index after it.
 std::size_t read_number(std::string_view text, std::size_t i, const SourceLocation& where, std::size_t letter_at,
@@ -36,12 +47,14 @@ std::size_t read_number(std::string_view text, std::size_t i, const SourceLocati
     while (i < text.size() && blank(text[i])) ++i;
   }
   int digits = 0, points = 0;
+  bool whole_part_nonzero = false;  // a non-zero digit before the point: the value is at least 1
   std::size_t end = i;
   while (i < text.size() && (std::isdigit(static_cast<unsigned char>(text[i])) || text[i] == '.' || blank(text[i]))) {
     if (text[i] == '.') {
       if (++points > 1) break;
     } else if (!blank(text[i])) {
       ++digits;
+      if (points == 0 && text[i] != '0') whole_part_nonzero = true;
     }
     if (!blank(text[i])) {
       compact += text[i];
@@ -49,21 +62,40 @@ std::size_t read_number(std::string_view text, std::size_t i, const SourceLocati
     }
     ++i;
   }
-  const std::string letter(1, static_cast<char>(std::toupper(static_cast<unsigned char>(text[letter_at]))));
-  if (digits == 0) fail(where, letter_at, letter + ": a letter without a number");
+  word.letter = static_cast<char>(std::toupper(static_cast<unsigned char>(text[letter_at])));
+  word.number = text.substr(begin, end - begin);
+  if (digits == 0) fail(where, letter_at, std::string(1, word.letter) + ": a letter without a number");
   double value = 0.0;
   const auto [ptr, ec] = std::from_chars(compact.data(), compact.data() + compact.size(), value);
-  if (ec != std::errc() || ptr != compact.data() + compact.size() || !std::isfinite(value)) {
-    fail(where, letter_at, letter + std::string(text.substr(begin, end - begin)) + ": not a number");
+  if (ec == std::errc::result_out_of_range && !whole_part_nonzero) {
+    value = 0.0;  // below the smallest double: zero for every purpose of a machine
+  } else if (ec == std::errc::result_out_of_range) {
+    fail(where, letter_at, word_name(word) + ": number too large");
+  } else if (ec != std::errc() || ptr != compact.data() + compact.size() || !std::isfinite(value)) {
+    fail(where, letter_at, word_name(word) + ": not a number");
   }
   word.value = value;
-  word.number = text.substr(begin, end - begin);
   return end;
+}
+
+// Index after the comment opened at text[open]; parentheses nest when `nested` is set.
+std::size_t skip_comment(std::string_view text, std::size_t open, const SourceLocation& where, bool nested) {
+  int depth = 0;
+  for (std::size_t i = open; i < text.size(); ++i) {
+    if (text[i] == '(') {
+      if (depth > 0 && !nested) fail(where, i, "comments do not nest: '(' inside a comment");
+      ++depth;
+    } else if (text[i] == ')' && --depth == 0) {
+      return i + 1;
+    }
+  }
+  fail(where, open, "comment '(' is not closed on this line");
 }
 
 }  // namespace
 
-bool lex_gcode_line(std::string_view text, const SourceLocation& where, std::vector<GcodeWord>& words) {
+bool lex_gcode_line(std::string_view text, const SourceLocation& where, std::vector<GcodeWord>& words,
+                    bool nested_comments) {
   words.clear();
   std::size_t i = 0;
   while (i < text.size() && blank(text[i])) ++i;
@@ -73,16 +105,21 @@ bool lex_gcode_line(std::string_view text, const SourceLocation& where, std::vec
     if (blank(c)) {
       ++i;
     } else if (c == '(') {
-      const std::size_t close = text.find(')', i + 1);
-      if (close == std::string_view::npos) fail(where, i, "comment '(' is not closed on this line");
-      i = close + 1;
+      i = skip_comment(text, i, where, nested_comments);
     } else if (c == ';') {
       break;
-    } else if (std::isalpha(static_cast<unsigned char>(c))) {
+    } else if (letter(c)) {
       GcodeWord word;
-      word.letter = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
       word.column = static_cast<int>(i) + 1;
       i = read_number(text, i + 1, where, i, word);
+      if (word.letter == 'O') {  // "o100 sub", "o100 call": a keyword follows the number
+        std::size_t k = i;
+        while (k < text.size() && blank(text[k])) ++k;
+        if (k + 1 < text.size() && letter(text[k]) && letter(text[k + 1])) {
+          fail(where, static_cast<std::size_t>(word.column - 1),
+               word_name(word) + ": subroutines and control flow (sub, call, if, while …) are not supported");
+        }
+      }
       words.push_back(word);
     } else {
       const bool printable = static_cast<unsigned char>(c) >= 0x20 && static_cast<unsigned char>(c) < 0x7f;

@@ -75,6 +75,13 @@ PathPoint point_at(const PathSegment& segment, double s_m) noexcept {
   return point;
 }
 
+double power_at(const PathSegment& segment, double speed_m_s) noexcept {
+  if (!segment.laser_on) return 0.0;
+  if (!segment.dynamic_power) return segment.power;
+  if (!(segment.feed_m_s > 0.0) || !(speed_m_s > 0.0)) return 0.0;  // at rest M4 does not fire
+  return segment.power * std::min(1.0, speed_m_s / segment.feed_m_s);
+}
+
 Vec2 start_tangent(const PathSegment& segment) noexcept { return point_at(segment, 0.0).tangent; }
 
 Vec2 end_tangent(const PathSegment& segment) noexcept { return point_at(segment, segment.length_m).tangent; }

@@ -2,11 +2,22 @@
 #include "stiffpath/motion/sampler.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <fmt/format.h>
 
 #include "stiffpath/core/error.hpp"
 
 namespace stiffpath::motion {
+
+std::uint64_t sample_count(double duration_s, double rate_hz) noexcept {
+  if (!(duration_s > 0.0)) return 1;
+  const double k = std::ceil(duration_s * rate_hz);
+  if (!(k < 1e18)) return UINT64_MAX;
+  auto last = static_cast<std::uint64_t>(k);  // the first k with k / rate >= duration, as next() compares
+  while (last > 0 && static_cast<double>(last - 1) / rate_hz >= duration_s) --last;
+  while (static_cast<double>(last) / rate_hz < duration_s) ++last;
+  return last + 1;
+}
 
 Sampler::Sampler(SegmentSource& source, double rate_hz) : source_(source), rate_hz_(rate_hz) {
   if (!std::isfinite(rate_hz) || rate_hz <= 0.0) {

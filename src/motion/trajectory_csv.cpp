@@ -18,6 +18,8 @@ void SummaryAccumulator::add(const TrajectorySample& sample) noexcept {
   summary_.peak_acceleration_m_s2 = std::max(summary_.peak_acceleration_m_s2, sample.acceleration_m_s2.norm());
   summary_.peak_jerk_m_s3 = std::max(summary_.peak_jerk_m_s3, sample.jerk_m_s3.norm());
   if (sample.laser_on) summary_.laser_on_s += period_s_;
+  summary_.laser_full_power_s += sample.power * period_s_;
+  summary_.peak_power = std::max(summary_.peak_power, sample.power);
 }
 
 namespace {
@@ -68,7 +70,10 @@ void TrajectoryCsvWriter::write(const TrajectorySample& s) {
   put(buffer_, units::m_to_mm(s.acceleration_m_s2.y()), 4);
   put(buffer_, units::m_to_mm(s.jerk_m_s3.x()), 2);
   put(buffer_, units::m_to_mm(s.jerk_m_s3.y()), 2);
-  fmt::format_to(std::back_inserter(buffer_), "{},{},{}\n", s.laser_on ? 1 : 0, s.laser_power, s.line);
+  buffer_.push_back(s.laser_on ? '1' : '0');
+  buffer_.push_back(',');
+  put(buffer_, s.power, 6);
+  fmt::format_to(std::back_inserter(buffer_), "{}\n", s.line);
   if (buffer_.size() >= flush_bytes) flush();
 }
 

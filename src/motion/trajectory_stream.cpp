@@ -24,7 +24,34 @@ Trajectory plan_from(GcodeReader& reader, const PlanOptions& options) {
   CornerBlender blender(reader, options.planner.junction.corner_angle_rad);
   return Trajectory::plan(blender, options.limits, options.planner);
 }
+
+PlanSize measure(GcodeReader& reader, const PlanOptions& options) {
+  CornerBlender blender(reader, options.planner.junction.corner_angle_rad);
+  Planner planner(blender, options.limits, options.planner);
+  PlanSize size;
+  while (auto segment = planner.next()) {
+    ++size.segments;
+    size.duration_s = segment->end_time_s();
+  }
+  size.samples = size.segments == 0 ? 0 : sample_count(size.duration_s, options.rate_hz);
+  return size;
+}
+
+GcodeOptions quiet(GcodeOptions options) {
+  options.on_warnings = nullptr;
+  return options;
+}
 }  // namespace
+
+PlanSize measure_plan(const std::filesystem::path& gcode, const PlanOptions& options) {
+  GcodeReader reader(gcode, quiet(options.gcode));
+  return measure(reader, options);
+}
+
+PlanSize measure_plan(std::istream& in, const std::string& label, const PlanOptions& options) {
+  GcodeReader reader(in, label, quiet(options.gcode));
+  return measure(reader, options);
+}
 
 Trajectory plan_gcode(const std::filesystem::path& gcode, const PlanOptions& options) {
   GcodeReader reader(gcode, options.gcode);

@@ -66,7 +66,7 @@ void plot_cross_validation(const std::filesystem::path& dir, const std::string& 
   std::string commands = fmt::format("set multiplot layout 2,3 title {}\nset size square\n",
                                      quote(fmt::format("{} ({}): leave-one-out, measured vs predicted at the highest "
                                                        "load",
-                                                       report.mechanism, report.source)));
+                                                       report.robot, report.source)));
   for (std::size_t m = 0; m < report.methods.size(); ++m) {
     const auto& method = report.methods[m];
     commands += fmt::format(

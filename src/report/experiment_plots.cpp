@@ -22,13 +22,13 @@ std::vector<std::string> write_experiment_figures(const std::filesystem::path& d
   std::map<std::string, std::string> files;  // file name → contents
   std::vector<std::string> mechanisms;
   for (const auto& r : results) {
-    const std::string name = series_file(r.spec.mechanism, r.spec.compensated, r.spec.motion);
+    const std::string name = series_file(r.spec.robot, r.spec.compensated, r.spec.motion);
     auto& text = files[name];
     if (text.empty()) text = "# acceleration_g\tlength_mm\tdeviation_area_mm2\tmax_deviation_mm\n";
     text += fmt::format("{:g}\t{:.6f}\t{:.6f}\t{:.6f}\n", r.spec.acceleration_g, r.metrics.length_m * 1e3,
                         r.metrics.deviation_area_m2 * 1e6, r.metrics.max_deviation_m * 1e3);
-    if (std::find(mechanisms.begin(), mechanisms.end(), r.spec.mechanism) == mechanisms.end()) {
-      mechanisms.push_back(r.spec.mechanism);
+    if (std::find(mechanisms.begin(), mechanisms.end(), r.spec.robot) == mechanisms.end()) {
+      mechanisms.push_back(r.spec.robot);
     }
   }
   for (const auto& [name, text] : files) core::write_file_atomically(dir / name, text);

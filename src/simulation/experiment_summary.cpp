@@ -8,10 +8,10 @@
 namespace stiffpath::simulation {
 namespace {
 
-const RunResult* find(const std::vector<RunResult>& results, const std::string& mechanism, const std::string& motion,
+const RunResult* find(const std::vector<RunResult>& results, const std::string& robot, const std::string& motion,
                       double g, bool compensated) {
   for (const auto& r : results) {
-    if (r.spec.mechanism == mechanism && r.spec.motion == motion && r.spec.acceleration_g == g &&
+    if (r.spec.robot == robot && r.spec.motion == motion && r.spec.acceleration_g == g &&
         r.spec.compensated == compensated) {
       return &r;
     }
@@ -31,12 +31,12 @@ std::string experiment_summary(const std::vector<RunResult>& results) {
   for (const auto& r : results) g = std::max(g, r.spec.acceleration_g);
   std::string out = fmt::format(
       "At {:g} g, without → with compensation:\n\n"
-      "| mechanism | motion | length error (mm) | removed | max deviation (mm) | removed | deviation area (mm²) | "
+      "| robot | motion | length error (mm) | removed | max deviation (mm) | removed | deviation area (mm²) | "
       "residual vibration (mm) |\n|---|---|---|---|---|---|---|---|\n",
       g);
   std::vector<std::pair<std::string, std::string>> seen;
   for (const auto& r : results) {
-    const std::pair<std::string, std::string> key{r.spec.mechanism, r.spec.motion};
+    const std::pair<std::string, std::string> key{r.spec.robot, r.spec.motion};
     if (std::find(seen.begin(), seen.end(), key) != seen.end()) continue;
     seen.push_back(key);
     const RunResult* off = find(results, key.first, key.second, g, false);

@@ -9,7 +9,7 @@
 
 namespace stiffpath::simulation {
 
-JointReference interpolate(const compensation::JointRecord& a, const compensation::JointRecord& b, double s) noexcept {
+JointReference interpolate(const compensation::JointCommand& a, const compensation::JointCommand& b, double s) noexcept {
   const double h = b.t_s - a.t_s;
   const double s2 = s * s, s3 = s2 * s;
   // Hermite basis and its derivatives with respect to s.
@@ -35,14 +35,14 @@ void check_finite(const Plant& plant, double t) {
 
 }  // namespace
 
-SimulationResult simulate(const JointSource& source, const kinematics::MechanismSpec& mechanism,
+SimulationResult simulate(const JointSource& source, const kinematics::Robot& robot_spec,
                           std::shared_ptr<const compliance::Model> truth, const SimulationOptions& options) {
   if (!(options.settle_s >= 0.0) || !(options.mark_rate_hz > 0.0)) {
     throw Error(fmt::format("simulation: settle_s {} must be ≥ 0 and mark_rate_hz {} > 0", options.settle_s,
                             options.mark_rate_hz));
   }
-  const kinematics::FiveBar robot = mechanism.five_bar();
-  Plant plant(robot, std::move(truth), mechanism.moving_mass_kg, options.plant);
+  const kinematics::FiveBar robot = robot_spec.five_bar();
+  Plant plant(robot, std::move(truth), robot_spec.moving_mass_kg, options.plant);
   SimulationResult out;
   auto first = source();
   if (!first) throw Error("simulation: the joint trajectory is empty");
@@ -54,7 +54,7 @@ SimulationResult simulate(const JointSource& source, const kinematics::Mechanism
   const double rate = options.plant.step_rate_hz;
   const auto mark_every = static_cast<std::uint64_t>(std::max(1.0, std::round(rate / options.mark_rate_hz)));
   auto deflection = [&] { return (plant.state().tip_m - plant.base()).norm(); };
-  compensation::JointRecord a = *first;
+  compensation::JointCommand a = *first;
   const double t0 = a.t_s;
   if (a.laser_on) out.marked.push_back(plant.state().tip_m);
   for (auto b = source(); b; b = source()) {

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "stiffpath/compliance/model_factory.hpp"
+#include "stiffpath/compliance/model_file.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/simulation/twin_models.hpp"
 
@@ -63,15 +64,29 @@ class PerturbedModel final : public compliance::Model {
 
 }  // namespace
 
-std::shared_ptr<const compliance::Model> make_true_compliance(const std::string& build,
+std::shared_ptr<const compliance::Model> make_true_compliance(const kinematics::Robot& robot,
                                                               const TrueComplianceOptions& options) {
-  if (build != "OC" && build != "SC") throw Error(fmt::format("unknown build '{}' (use OC or SC)", build));
   if (!(options.perturbation >= 0.0 && options.perturbation <= 0.5)) {
     throw Error(fmt::format("perturbation {} outside [0, 0.5]", options.perturbation));
   }
-  const std::string name =
-      options.base_model.empty() ? (build == "OC" ? "thesis-oc-physical" : "thesis-sc-physical") : options.base_model;
-  std::shared_ptr<compliance::Model> base = compliance::load_model(name).model;
+  std::shared_ptr<compliance::Model> base;
+  if (!options.base_model.empty()) {
+    compliance::LoadedModel m = compliance::load_model(options.base_model);
+    compliance::check_model_geometry(m, robot, false);
+    base = std::move(m.model);
+  } else if (!robot.compliance.table.empty()) {
+    base = compliance::fit_model(measurement::load_displacement_table(robot.compliance.table), robot.compliance.rows,
+                                 "physical", compliance::ForceConvention::measured, robot)
+               .model;
+  } else if (!robot.compliance.model.empty()) {
+    compliance::LoadedModel m = compliance::load_model_file(robot.compliance.model);
+    compliance::check_model_geometry(m, robot, false);
+    base = std::move(m.model);
+  } else {
+    throw Error(SourceLocation{robot.file.label()},
+                fmt::format("robot '{}' has no compliance data for the digital twin (compliance.table or .model)",
+                            robot.name));
+  }
   // The plant must follow the physics beyond the measured rectangle, not freeze it.
   base->set_outside_policy(compliance::OutsidePolicy::extrapolate);
   std::mt19937_64 rng(options.seed);

@@ -1,19 +1,21 @@
 // The compensation model of the twin: a virtual CMM campaign on C_true, processed and fitted as the thesis did.
+#include <algorithm>
+#include <cmath>
 #include <fmt/format.h>
 
 #include "stiffpath/compliance/model_factory.hpp"
 #include "stiffpath/core/error.hpp"
+#include "stiffpath/core/units.hpp"
 #include "stiffpath/measurement/process_campaign.hpp"
 #include "stiffpath/measurement/virtual_campaign.hpp"
 #include "stiffpath/simulation/twin_models.hpp"
 
 namespace stiffpath::simulation {
 
-measurement::DisplacementTable virtual_campaign_table(const compliance::Model& truth, const std::string& build,
+measurement::DisplacementTable virtual_campaign_table(const compliance::Model& truth, const kinematics::Robot& robot,
                                                       const CampaignFitOptions& options) {
-  const auto thesis = measurement::load_displacement_table("thesis").filter(build);
-  if (thesis.rows.empty()) throw Error(fmt::format("no thesis data for build '{}'", build));
-  measurement::DisplacementTable exact = measurement::linear_truth(thesis);
+  const measurement::DisplacementTable own = compliance::robot_table(robot);
+  measurement::DisplacementTable exact = measurement::linear_truth(own);
   for (auto& row : exact.rows) {
     const compliance::Vec2 F = row.force_N * compliance::Vec2(measurement::direction_x(row.direction),
                                                               measurement::direction_y(row.direction));
@@ -24,18 +26,31 @@ measurement::DisplacementTable virtual_campaign_table(const compliance::Model& t
   measurement::VirtualCampaignOptions campaign;
   campaign.noise_sigma_m = options.noise_sigma_m;
   campaign.seed = options.seed;
+  // The load of the unloaded reference step implied by the table (table 2.1: 0.11 kgf; zero for a
+  // table that gives forces in N only), to the µkgf.
+  const auto& first = own.rows.front();
+  campaign.step0_kgf =
+      std::max(0.0, std::round((first.force_kgf - first.force_N / units::standard_gravity_m_s2) * 1e6) / 1e6);
   measurement::ProcessOptions process;
-  process.mechanism = build;
+  process.mechanism = robot.compliance.rows;
+  if (robot.replica) {
+    campaign.geometry = process.geometry = {robot.replica->ug_m, robot.replica->ul_m};
+  } else {
+    campaign.geometry = process.geometry = {0.0, 0.1};  // no replica: G itself is read (U = G)
+  }
   measurement::DisplacementTable measured =
       measurement::process_campaign(measurement::simulate_campaign(exact, campaign), process);
-  measured.source = fmt::format("virtual campaign on C_true ({}, seed {})", build, options.seed);
+  measured.source = fmt::format("virtual campaign on C_true ({}, seed {})", robot.name, options.seed);
   return measured;
 }
 
-std::shared_ptr<const compliance::Model> fit_compensation_model(const compliance::Model& truth, const std::string& build,
+std::shared_ptr<const compliance::Model> fit_compensation_model(const compliance::Model& truth,
+                                                                const kinematics::Robot& robot,
                                                                 const CampaignFitOptions& options) {
-  const auto table = virtual_campaign_table(truth, build, options);
-  std::shared_ptr<compliance::Model> model = compliance::fit_model(table, build, options.method).model;
+  const auto table = virtual_campaign_table(truth, robot, options);
+  const std::string method = !options.method.empty() ? options.method : robot.compliance.method;
+  std::shared_ptr<compliance::Model> model =
+      compliance::fit_model(table, robot.compliance.rows, method, compliance::ForceConvention::measured, robot).model;
   return model;
 }
 

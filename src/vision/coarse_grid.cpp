@@ -42,12 +42,13 @@ double median_of(std::vector<float>& v) {
 }  // namespace
 
 double CoarseGrid::paper_at(double x_px, double y_px) const {
-  const double gx = std::clamp(x_px / cell - 0.5, 0.0, background.cols - 1.0);
-  const double gy = std::clamp(y_px / cell - 0.5, 0.0, background.rows - 1.0);
-  const int x0 = static_cast<int>(gx), y0 = static_cast<int>(gy);
-  const int x1 = std::min(x0 + 1, background.cols - 1), y1 = std::min(y0 + 1, background.rows - 1);
-  const double fx = gx - x0, fy = gy - y0;
-  const auto at = [&](int y, int x) { return static_cast<double>(background.at<float>(y, x)); };
+  // Block centres sit at (b + 0.5)·16 cells.
+  const double bx = std::clamp(x_px / (16.0 * cell) - 0.5, 0.0, blocks.cols - 1.0);
+  const double by = std::clamp(y_px / (16.0 * cell) - 0.5, 0.0, blocks.rows - 1.0);
+  const int x0 = static_cast<int>(bx), y0 = static_cast<int>(by);
+  const int x1 = std::min(x0 + 1, blocks.cols - 1), y1 = std::min(y0 + 1, blocks.rows - 1);
+  const double fx = bx - x0, fy = by - y0;
+  const auto at = [&](int y, int x) { return static_cast<double>(blocks.at<float>(y, x)); };
   return (1 - fy) * ((1 - fx) * at(y0, x0) + fx * at(y0, x1)) + fy * ((1 - fx) * at(y1, x0) + fx * at(y1, x1));
 }
 
@@ -55,39 +56,42 @@ CoarseGrid build_coarse_grid(const cv::Mat& grey, int cell) {
   CoarseGrid grid;
   grid.cell = cell;
   const int gh = (grey.rows + cell - 1) / cell, gw = (grey.cols + cell - 1) / cell;
-  grid.mean.create(gh, gw, CV_32F);
+  // The block means are made in the darkness grid and turned into darkness in place (one grid, not two).
+  grid.darkness.create(gh, gw, CV_32F);
+  const cv::Mat& mean = grid.darkness;
   if (grey.depth() == CV_8U) {
-    block_means<std::uint8_t>(grey, cell, grid.mean);
+    block_means<std::uint8_t>(grey, cell, grid.darkness);
   } else {
-    block_means<std::uint16_t>(grey, cell, grid.mean);
+    block_means<std::uint16_t>(grey, cell, grid.darkness);
   }
   // Paper level: median of 16 × 16 cells (64 px at the default cell), smoothly interpolated. A mark
   // crossing a block covers a minority of its cells, so the median sees paper; shading is slow.
   constexpr int kBlock = 16;
   const int bh = (gh + kBlock - 1) / kBlock, bw = (gw + kBlock - 1) / kBlock;
-  cv::Mat blocks(bh, bw, CV_32F);
+  cv::Mat& blocks = grid.blocks;
+  blocks.create(bh, bw, CV_32F);
   std::vector<float> values;
   for (int by = 0; by < bh; ++by) {
     for (int bx = 0; bx < bw; ++bx) {
       values.clear();
       for (int y = by * kBlock; y < std::min(gh, (by + 1) * kBlock); ++y) {
-        for (int x = bx * kBlock; x < std::min(gw, (bx + 1) * kBlock); ++x) values.push_back(grid.mean.at<float>(y, x));
+        for (int x = bx * kBlock; x < std::min(gw, (bx + 1) * kBlock); ++x) values.push_back(mean.at<float>(y, x));
       }
       blocks.at<float>(by, bx) = static_cast<float>(median_of(values));
     }
   }
-  cv::resize(blocks, grid.background, cv::Size(gw, gh), 0, 0, cv::INTER_LINEAR);
-  grid.darkness.create(gh, gw, CV_32F);
-  std::vector<float> all;
-  all.reserve(static_cast<std::size_t>(gh) * gw);
   for (int y = 0; y < gh; ++y) {
     for (int x = 0; x < gw; ++x) {
-      const float bg = std::max(grid.background.at<float>(y, x), 1e-3f);
-      const float d = 1.0f - grid.mean.at<float>(y, x) / bg;
-      grid.darkness.at<float>(y, x) = d;
-      all.push_back(d);
+      const float bg = std::max(static_cast<float>(grid.paper_at((x + 0.5) * cell, (y + 0.5) * cell)), 1e-3f);
+      grid.darkness.at<float>(y, x) = 1.0f - grid.darkness.at<float>(y, x) / bg;
     }
   }
+  // The paper's darkness level and noise from every cell, or from an even sample of a million cells on a
+  // large scan (the same statistics, without a copy of the whole grid).
+  const std::size_t cells = static_cast<std::size_t>(gh) * gw, stride = std::max<std::size_t>(1, cells / 1000000);
+  std::vector<float> all;
+  all.reserve(cells / stride + 1);
+  for (std::size_t i = 0; i < cells; i += stride) all.push_back(grid.darkness.at<float>(static_cast<int>(i / gw), static_cast<int>(i % gw)));
   grid.median = median_of(all);
   for (auto& v : all) v = std::abs(v - static_cast<float>(grid.median));
   grid.sigma = 1.4826 * median_of(all);

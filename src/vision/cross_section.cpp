@@ -57,4 +57,16 @@ std::vector<std::optional<double>> running_mean(const std::vector<std::optional<
   return out;
 }
 
+double local_slope(const SideSections& side, int a) {
+  double n = 0, sa = 0, sb = 0, saa = 0, sab = 0;
+  for (int j = std::max(side.body_first, a - 8); j <= std::min(side.body_last, a + 8); ++j) {
+    const Section& s = side.at(j);
+    if (!s.body || s.rejected) continue;
+    const double x = j - a;
+    n += 1, sa += x, sb += s.centre, saa += x * x, sab += x * s.centre;
+  }
+  const double det = n * saa - sa * sa;
+  return n >= 3 && det > 0 ? (n * sab - sa * sb) / det : 0.0;
+}
+
 }  // namespace stiffpath::vision::detail

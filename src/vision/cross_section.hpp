@@ -62,12 +62,15 @@ struct Section {
   std::optional<double> lo, hi;  //!< paper levels (grey) of the two flanks, averaged along the side
   double lo_pos = 0, hi_pos = 0; //!< across positions of the flanks' centres
   bool rejected = false;
+  bool crowded = false;  //!< another side of the mark is within the section's reach (near a corner): not measured
 };
 
 //! The cross-sections of one side after the body pass, and what they tell about the mark.
 struct SideSections {
   SectionFrame frame;
   const CoarseGrid* grid = nullptr;
+  const CoarsePath* path = nullptr;  //!< the mark's sides and the cells each owns
+  int side = 0;                      //!< this side's index in path
   std::vector<Section> secs;  //!< consecutive a from `first` to `last`
   int first = 0, body_first = 0, body_last = 0, last = 0;
   double cos_t = 1, tan_t = 0;  //!< angle between the side and the section's along axis
@@ -76,9 +79,22 @@ struct SideSections {
   double darkness = 0;          //!< full darkness of the mark (its core's, corrected for blur)
   double core_factor = 1;       //!< core darkness / full darkness (< 1 when blur reaches the core)
   std::size_t end_fit = 20;     //!< sections used for a free end's local line, width and darkness
+  std::size_t crowded_elsewhere = 0;  //!< body sections left out away from corners: another side of the mark was within reach
   [[nodiscard]] Section& at(int a) { return secs[static_cast<std::size_t>(a - first)]; }
   [[nodiscard]] const Section& at(int a) const { return secs[static_cast<std::size_t>(a - first)]; }
 };
+
+//! Slope db/da of the centre line at section a: a least-squares line through the accepted body
+//! centres within ±8 sections (0 when fewer than three).
+double local_slope(const SideSections& side, int a);
+
+//! Flags the body sections whose window or flanks (`reach_px` either side of the centre) hold a pixel
+//! darker than `dark` in a coarse cell of another side of the path (two sides running close together
+//! near a corner, or the path crossing or touching itself) and takes them out of the body. Throws
+//! stiffpath::Error when such sections run on from a corner farther than the metrics' corner trim:
+//! the side cannot be measured as far into the corner as the trim asks.
+void drop_crowded_sections(SideSections& side, const CoarseSide& coarse, double reach_px, double dark, double px_per_m,
+                           const ScanOptions& options);
 
 //! Paper level of a section: linear between its flanks, or the coarse grid's when it has none.
 Paper section_paper(const SideSections& side, const Section& s);
@@ -93,6 +109,8 @@ struct FreeEnd {
   double radius = 0;  //!< fitted radius of the tip's edge (px)
   double rms = 0;     //!< rms misfit of the tip, relative to the mark's darkness
   bool round = true;
+  double uncertainty_px = 0;  //!< bound on the error of cap along the side when the end is not round (px)
+  bool continues = false;     //!< the mark goes on past the search region: this is not a free end
 };
 //! `side_line` is the side's fitted line; the end is measured along its direction.
 FreeEnd measure_free_end(const SideSections& side, const evaluation::Line2& side_line, bool low, const ScanOptions& options);

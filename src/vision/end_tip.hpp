@@ -16,9 +16,13 @@ struct TipSearch {
   Point2 outward{1, 0};  //!< unit vector along the side, pointing out of the mark at this end
   double threshold = 0;
 };
-//! The farthest such pixel along `outward` (its centre, image px), moved across to the darkness-weighted
-//! centre of the pixels within 1.5 px of that extreme; nullopt if the seed is not dark.
-std::optional<Point2> farthest_dark_point(const cv::Mat& grey, const CoarseGrid& grid, const TipSearch& search);
+//! The farthest such pixel along `outward`.
+struct TipExtreme {
+  Point2 point{0, 0};        //!< its centre (image px), moved across to the darkness-weighted centre of the pixels within 1.5 px of the extreme
+  bool at_box_edge = false;  //!< a dark pixel that far out lies on the box's edge: the mark may go on outside the box
+};
+//! nullopt if the seed is not dark.
+std::optional<TipExtreme> farthest_dark_point(const cv::Mat& grey, const CoarseGrid& grid, const TipSearch& search);
 
 //! Start values of the tip fit (image px).
 struct TipGuess {

@@ -6,7 +6,7 @@
 
 namespace stiffpath::vision::detail {
 
-std::optional<Point2> farthest_dark_point(const cv::Mat& grey, const CoarseGrid& grid, const TipSearch& s) {
+std::optional<TipExtreme> farthest_dark_point(const cv::Mat& grey, const CoarseGrid& grid, const TipSearch& s) {
   const cv::Rect box = s.box & cv::Rect(0, 0, grey.cols, grey.rows);
   if (box.empty()) return std::nullopt;
   const auto dark = [&](int x, int y) { return 1.0 - pixel(grey, y, x) / grid.paper_at(x + 0.5, y + 0.5) > s.threshold; };
@@ -39,7 +39,14 @@ std::optional<Point2> farthest_dark_point(const cv::Mat& grey, const CoarseGrid&
     sw += w;
     sa += w * (Point2{p.x + 0.5, p.y + 0.5}).dot(across);
   }
-  return s.outward * far + across * (sa / sw);
+  TipExtreme out;
+  out.point = s.outward * far + across * (sa / sw);
+  // A dark pixel on the box's edge within a few pixels of the extreme: the footprint may be cut by the box.
+  for (const auto& p : members) {
+    const bool edge = p.x == box.x || p.y == box.y || p.x == box.x + box.width - 1 || p.y == box.y + box.height - 1;
+    if (edge && along(p) > far - 3.0) out.at_box_edge = true;
+  }
+  return out;
 }
 
 }  // namespace stiffpath::vision::detail

@@ -1,114 +1,44 @@
-// Straight sides of the mark on the coarse grid: one TLS line, or sequential RANSAC; corners link the sides in order.
+// Straight sides of the mark on the coarse grid: one TLS line, or RANSAC lines grown to their corners; corners link the sides in order.
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <fmt/format.h>
-#include <numbers>
-#include <random>
 
-#include "scan_internal.hpp"
+#include "side_search.hpp"
 #include "stiffpath/core/error.hpp"
 
 namespace stiffpath::vision::detail {
 
 namespace {
 
-using evaluation::Line2;
+using evaluation::Closure;
 
-struct Found {
-  Line2 line;
-  double t0 = 0, t1 = 0;  // extent along the line
+struct Link {
+  double cost;
+  int i, e, j, f;
+  Point2 x;
 };
 
-// The heaviest run of inliers along the line without gaps longer than `max_gap`.
-std::vector<std::size_t> heaviest_run(const MarkComponent& m, const std::vector<std::size_t>& inliers, const Line2& line,
-                                      double max_gap) {
-  std::vector<std::size_t> sorted = inliers;
-  std::sort(sorted.begin(), sorted.end(),
-            [&](std::size_t a, std::size_t b) { return line.along(m.cells_px[a]) < line.along(m.cells_px[b]); });
-  std::vector<std::size_t> best, run;
-  double best_mass = -1, mass = 0;
-  for (std::size_t k = 0; k <= sorted.size(); ++k) {
-    const bool gap = k == sorted.size() ||
-                     (k > 0 && line.along(m.cells_px[sorted[k]]) - line.along(m.cells_px[sorted[k - 1]]) > max_gap);
-    if (gap) {
-      if (mass > best_mass) best_mass = mass, best = run;
-      run.clear();
-      mass = 0;
-    }
-    if (k < sorted.size()) run.push_back(sorted[k]), mass += m.weights[sorted[k]];
-  }
-  return best;
-}
-
-Found fit_cells(const MarkComponent& m, const std::vector<std::size_t>& idx) {
-  std::vector<Point2> pts;
-  std::vector<double> w;
-  for (const auto i : idx) pts.push_back(m.cells_px[i]), w.push_back(std::max(1e-6, m.weights[i]));
-  Found f;
-  f.line = evaluation::fit_line_tls(pts, w).line;
-  f.t0 = 1e300, f.t1 = -1e300;
-  for (const auto& p : pts) f.t0 = std::min(f.t0, f.line.along(p)), f.t1 = std::max(f.t1, f.line.along(p));
-  return f;
-}
-
-std::vector<Found> ransac_sides(const MarkComponent& m, int n, double band, double max_gap, double min_len,
-                                const SourceLocation& where) {
-  std::vector<std::size_t> remaining(m.cells_px.size());
-  for (std::size_t i = 0; i < remaining.size(); ++i) remaining[i] = i;
-  double total = 0;
-  for (const double w : m.weights) total += w;
-  std::mt19937_64 rng(7);
-  std::vector<Found> found;
-  for (int k = 0; k < n; ++k) {
-    if (remaining.size() < 2) break;
-    std::uniform_int_distribution<std::size_t> pick(0, remaining.size() - 1);
-    Line2 best;
-    double best_score = -1;
-    for (int it = 0; it < 600; ++it) {
-      const Point2 a = m.cells_px[remaining[pick(rng)]], b = m.cells_px[remaining[pick(rng)]];
-      if ((b - a).norm() < 4 * band) continue;
-      const Line2 line{a, (b - a).normalized()};
-      double score = 0;
-      for (const auto i : remaining) {
-        if (std::abs(line.offset(m.cells_px[i])) <= band) score += m.weights[i];
+// The loose ends of sides that did not meet, for an error message: where each end is and how far it is
+// from the nearest crossing of its line with another side's.
+std::string loose_ends(const std::vector<FoundSide>& found, const std::vector<std::array<int, 2>>& partner, double px_per_m,
+                       const ScanOptions& options) {
+  std::string out;
+  const auto mm = [&](double px) { return px / px_per_m * 1e3; };
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    for (int e = 0; e < 2; ++e) {
+      if (partner[i][e] >= 0) continue;
+      const Point2 end = found[i].line.at(e == 0 ? found[i].t0 : found[i].t1);
+      double nearest = 1e300;
+      for (std::size_t j = 0; j < found.size(); ++j) {
+        if (j == i) continue;
+        if (const auto x = evaluation::intersect(found[i].line, found[j].line)) nearest = std::min(nearest, (*x - end).norm());
       }
-      if (score > best_score) best_score = score, best = line;
+      out += fmt::format("{}side end at {}{}", out.empty() ? "" : "; ", position_text(end, px_per_m, options),
+                         nearest < 1e299 ? fmt::format(" ({:.2f} mm from the nearest corner)", mm(nearest)) : "");
     }
-    if (best_score < 0) break;
-    std::vector<std::size_t> run;
-    for (int pass = 0; pass < 3; ++pass) {
-      std::vector<std::size_t> inliers;
-      for (const auto i : remaining) {
-        if (std::abs(best.offset(m.cells_px[i])) <= band) inliers.push_back(i);
-      }
-      run = heaviest_run(m, inliers, best, max_gap);
-      if (run.size() < 2) break;
-      best = fit_cells(m, run).line;
-    }
-    if (run.size() < 2) break;
-    Found side = fit_cells(m, run);
-    if (side.t1 - side.t0 < min_len) break;
-    found.push_back(side);
-    std::vector<std::size_t> left;
-    for (const auto i : remaining) {
-      const double t = side.line.along(m.cells_px[i]);
-      const bool on = std::abs(side.line.offset(m.cells_px[i])) <= band + 1.0 && t >= side.t0 - band && t <= side.t1 + band;
-      if (!on) left.push_back(i);
-    }
-    remaining.swap(left);
   }
-  if (static_cast<int>(found.size()) < n) {
-    throw Error(where, fmt::format("the mark does not split into {} straight sides (found {} longer than {:.1f} px)", n,
-                                   found.size(), min_len));
-  }
-  double left_mass = 0;
-  for (const auto i : remaining) left_mass += m.weights[i];
-  if (left_mass > 0.15 * total) {
-    throw Error(where, fmt::format("the mark has more than {} straight sides: {:.0f} % of it lies on none of them", n,
-                                   100 * left_mass / total));
-  }
-  return found;
+  return out;
 }
 
 }  // namespace
@@ -116,10 +46,15 @@ std::vector<Found> ransac_sides(const MarkComponent& m, int n, double band, doub
 CoarsePath find_sides(const MarkComponent& mark, int n, double px_per_m, const ScanOptions& options) {
   const SourceLocation where{options.label, 0, 0};
   if (n < 1) throw Error(where, fmt::format("number of sides must be >= 1, got {}", n));
+  const Closure closure = options.metrics.closure;
+  if (closure == Closure::closed && n < 3) throw Error(where, fmt::format("a closed mark needs at least 3 sides, got {}", n));
   const double w = mark.width_px, cell_px = options.cell_px;
-  const double band = w / 2 + 1.5 * cell_px;
-  const double min_len = options.min_mark_length_m * px_per_m;
-  std::vector<Found> found;
+  SideSearch search;
+  search.band = w / 2 + 1.5 * cell_px;
+  search.max_gap = std::max(1e-3 * px_per_m, 3 * w);
+  search.min_length = options.min_mark_length_m * px_per_m;
+  std::vector<FoundSide> found;
+  std::vector<int> owner(mark.cells_px.size(), 0);
   if (n == 1) {
     std::vector<std::size_t> all(mark.cells_px.size());
     for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
@@ -132,12 +67,34 @@ CoarsePath find_sides(const MarkComponent& mark, int n, double px_per_m, const S
                                      "use --shape triangle or polyline:N", worst / px_per_m * 1e3));
     }
   } else {
-    found = ransac_sides(mark, n, band, std::max(1e-3 * px_per_m, 3 * w), min_len, where);
+    // Sides that bow (a robot deflected along its path) leave much of their mass outside a band of the
+    // mark's width: widen the band step by step, up to the straightness allowed for a side.
+    const double widest = std::max(1e-3 * px_per_m, 3 * w);
+    for (;;) {
+      try {
+        found = ransac_sides(mark, n, search, where);
+        break;
+      } catch (const Error&) {
+        if (search.band >= widest) throw;
+        search.band = std::min(2 * search.band, widest);
+      }
+    }
+    owner = assign_cells(mark, found);
+    for (std::size_t k = 0; k < found.size(); ++k) {
+      double worst = 0;
+      for (std::size_t i = 0; i < owner.size(); ++i) {
+        if (owner[i] == static_cast<int>(k)) worst = std::max(worst, std::abs(found[k].line.offset(mark.cells_px[i])));
+      }
+      const double allowed = std::max(1e-3 * px_per_m, 0.03 * (found[k].t1 - found[k].t0)) + w;
+      if (worst > allowed) {
+        throw Error(where, fmt::format("the mark does not split into {} straight sides: one strays {:.2f} mm from its fitted line "
+                                       "(allowed {:.2f} mm)", n, worst / px_per_m * 1e3, allowed / px_per_m * 1e3));
+      }
+    }
   }
 
   // Link side ends that meet at the intersection of their lines.
   const double tol = std::max(2e-3 * px_per_m, 4 * w);
-  struct Link { double cost; int i, e, j, f; Point2 x; };
   std::vector<Link> links;
   auto end_of = [&](int i, int e) { return found[i].line.at(e == 0 ? found[i].t0 : found[i].t1); };
   for (int i = 0; i < n; ++i) {
@@ -166,9 +123,14 @@ CoarsePath find_sides(const MarkComponent& mark, int n, double px_per_m, const S
     ++link_count;
   }
   CoarsePath path;
-  path.closed = n >= 2 && link_count == n;
+  path.closed = n >= 3 && link_count == n;
+  if (closure == Closure::closed && !path.closed) {
+    throw Error(where, fmt::format("the {} sides found do not close into a loop, so the closed mark cannot be measured: {}", n,
+                                   loose_ends(found, partner, px_per_m, options)));
+  }
   if (link_count != (path.closed ? n : n - 1)) {
-    throw Error(where, fmt::format("the {} sides found do not join into one path ({} of their corners meet)", n, link_count));
+    throw Error(where, fmt::format("the {} sides found do not join into one path ({} of their corners meet): {}", n, link_count,
+                                   loose_ends(found, partner, px_per_m, options)));
   }
   // Walk the chain from its start: the free end nearest the left edge, or for a loop the left-most corner.
   auto key = [](const Point2& p) { return p.x() + 1e-6 * p.y(); };
@@ -181,6 +143,7 @@ CoarsePath find_sides(const MarkComponent& mark, int n, double px_per_m, const S
       if (side < 0 || key(p) < key(path.closed ? corner[side][entry] : end_of(side, entry)) - 1e-9) side = i, entry = e;
     }
   }
+  std::vector<int> order;  // found index of each side of the chain
   for (int step = 0; step < n; ++step) {
     CoarseSide s;
     const int exit = 1 - entry;
@@ -191,6 +154,7 @@ CoarsePath find_sides(const MarkComponent& mark, int n, double px_per_m, const S
     s.line = found[side].line;
     if (s.line.direction.dot(s.end - s.start) < 0) s.line.direction = -s.line.direction;
     path.sides.push_back(s);
+    order.push_back(side);
     if (!s.end_is_corner) break;
     const int next = partner[side][exit];
     side = next / 2;
@@ -208,6 +172,7 @@ CoarsePath find_sides(const MarkComponent& mark, int n, double px_per_m, const S
     }
     if (area2 < 0) {
       std::reverse(path.sides.begin(), path.sides.end());
+      std::reverse(order.begin(), order.end());
       for (auto& s : path.sides) std::swap(s.start, s.end), s.line.direction = -s.line.direction;
     }
   }
@@ -215,6 +180,16 @@ CoarsePath find_sides(const MarkComponent& mark, int n, double px_per_m, const S
     auto& s = path.sides[k];
     if (s.start_is_corner) s.start_angle_rad = evaluation::angle_between(-path.sides[(k + n - 1) % n].line.direction, s.line.direction);
     if (s.end_is_corner) s.end_angle_rad = evaluation::angle_between(-s.line.direction, path.sides[(k + 1) % n].line.direction);
+  }
+  // Which side of the chain owns each cell of the mark.
+  std::vector<int> chain_of(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) chain_of[static_cast<std::size_t>(order[static_cast<std::size_t>(k)])] = k;
+  path.box = mark.box;
+  path.width_px = mark.width_px;
+  path.owner = cv::Mat(mark.box.size(), CV_8U, cv::Scalar(kNoSide));
+  for (std::size_t i = 0; i < mark.cells_px.size(); ++i) {
+    const int gx = static_cast<int>(mark.cells_px[i].x() / cell_px), gy = static_cast<int>(mark.cells_px[i].y() / cell_px);
+    path.owner.at<std::uint8_t>(gy - mark.box.y, gx - mark.box.x) = static_cast<std::uint8_t>(chain_of[static_cast<std::size_t>(owner[i])]);
   }
   return path;
 }

@@ -35,7 +35,8 @@ ScanImage load_scan(const std::filesystem::path& path, std::optional<double> dpi
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw Error(where, "no such file");
   if (std::filesystem::file_size(path, ec) == 0) throw Error(where, "the file is empty (0 bytes), not an image");
-  const cv::Mat raw = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
+  // Grey straight from the decoder (a colour scan is never held in colour), at its own bit depth.
+  const cv::Mat raw = cv::imread(path.string(), cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH);
   if (raw.empty()) throw Error(where, "not a readable image (PNG, TIFF or JPEG expected)");
   if (raw.rows < 1 || raw.cols < 1) throw Error(where, "the image has no pixels");
 
@@ -101,6 +102,13 @@ std::vector<std::uint8_t> encode_image(const cv::Mat& image, const std::filesyst
 }
 
 void write_image(const std::filesystem::path& path, const cv::Mat& image, double dpi) {
+  if (lower_extension(path) == ".png" && !image.empty()) {
+    // Row by row: no encoded copy of the whole image in memory.
+    PngRowWriter png(path, image.cols, image.rows, image.type(), dpi);
+    for (int y = 0; y < image.rows; y += 256) png.write(image.rowRange(y, std::min(image.rows, y + 256)));
+    png.commit();
+    return;
+  }
   const std::vector<std::uint8_t> bytes = encode_image(image, path, dpi);
   core::AtomicFile file(path);
   file.stream().write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));

@@ -1,18 +1,17 @@
-// The synthetic scanner: places the path, draws the mark, adds blur, paper texture, shading, noise, specks; truth.
+// The synthetic scanner: places a path (or a plate's marks and labels) on the image, works out the truth, rasterises.
 #include <cmath>
 #include <fmt/format.h>
-#include <opencv2/imgproc.hpp>
 
+#include "render_internal.hpp"
 #include "stiffpath/core/error.hpp"
-#include "stiffpath/vision/render.hpp"
 
 namespace stiffpath::vision {
 
-namespace {
+namespace detail {
 
-void check(const RenderOptions& o) {
+void check_render_options(const RenderOptions& o) {
   auto bad = [](const std::string& what) { throw Error("render: " + what); };
-  if (!(o.dpi > 0.0) || !std::isfinite(o.dpi)) bad(fmt::format("dpi must be positive, got {}", o.dpi));
+  if (!(o.dpi > 0.0) || !std::isfinite(o.dpi) || o.dpi > 1e5) bad(fmt::format("dpi must be in (0, 100000], got {}", o.dpi));
   if (!(o.mark_width_m > 0.0) || !std::isfinite(o.mark_width_m)) bad(fmt::format("mark width must be positive, got {} m", o.mark_width_m));
   if (!std::isfinite(o.rotation_rad)) bad("rotation must be finite");
   if (!(o.margin_m >= 0.0) || !std::isfinite(o.margin_m)) bad(fmt::format("margin must be >= 0, got {} m", o.margin_m));
@@ -26,27 +25,24 @@ void check(const RenderOptions& o) {
   if (o.specks < 0 || o.specks > 100000) bad(fmt::format("specks must be in [0, 100000], got {}", o.specks));
 }
 
-// Wood-fibre texture: Gaussian noise on a coarse grid stretched along x (fibres), smoothly upsampled, unit σ.
-cv::Mat fibre_texture(int rows, int cols, cv::RNG& rng) {
-  cv::Mat coarse(rows / 3 + 3, cols / 12 + 3, CV_32F);
-  rng.fill(coarse, cv::RNG::NORMAL, 0.0, 1.0);
-  cv::Mat texture;
-  cv::resize(coarse, texture, cv::Size(cols, rows), 0, 0, cv::INTER_CUBIC);
-  cv::Scalar mean, sd;
-  cv::meanStdDev(texture, mean, sd);
-  texture = (texture - mean[0]) / std::max(sd[0], 1e-12);
-  return texture;
+}  // namespace detail
+
+namespace {
+
+std::vector<Point2> joined(const std::vector<std::vector<Point2>>& sides) {
+  std::vector<Point2> out;
+  for (const auto& side : sides) out.insert(out.end(), side.begin(), side.end());
+  return out;
 }
 
-}  // namespace
-
-RenderedScan render_scan(const std::vector<std::vector<Point2>>& sides, bool closed, const RenderOptions& o) {
-  check(o);
+// Rotates the sides, places them margin_m inside an image just large enough (centred), and returns the
+// scene and the placed sides (m, image frame).
+detail::Scene place(const std::vector<std::vector<Point2>>& sides, const RenderOptions& o, std::vector<std::vector<Point2>>& placed) {
   if (sides.empty()) throw Error("render: no path to draw");
   const double px_per_m = o.dpi / 0.0254;
   const double c = std::cos(o.rotation_rad), s = std::sin(o.rotation_rad);
   Point2 lo{1e300, 1e300}, hi{-1e300, -1e300};
-  RenderedScan scan;
+  placed.clear();
   for (const auto& side : sides) {
     if (side.size() < 2) throw Error("render: every side needs at least two points");
     std::vector<Point2> turned;
@@ -57,77 +53,129 @@ RenderedScan render_scan(const std::vector<std::vector<Point2>>& sides, bool clo
       hi = hi.cwiseMax(q);
       turned.push_back(q);
     }
-    scan.sides.push_back(std::move(turned));
+    placed.push_back(std::move(turned));
   }
   const double pad = o.margin_m + o.mark_width_m / 2;
   const double width_px = std::ceil((hi.x() - lo.x() + 2 * pad) * px_per_m);
   const double height_px = std::ceil((hi.y() - lo.y() + 2 * pad) * px_per_m);
-  if (width_px * height_px > 200e6) {
-    throw Error(fmt::format("render: the image would be {:.0f} × {:.0f} px, above the 200 Mpx limit", width_px, height_px));
-  }
-  const int cols = static_cast<int>(width_px), rows = static_cast<int>(height_px);
-  // Centre the path in the image.
-  const Point2 shift = Point2{cols, rows} / (2 * px_per_m) - (lo + hi) / 2;
-  std::vector<Point2> polyline_px;
-  for (auto& side : scan.sides) {
+  detail::check_image_size(width_px, height_px);
+  detail::Scene scene;
+  scene.cols = static_cast<int>(width_px);
+  scene.rows = static_cast<int>(height_px);
+  scene.radius_px = o.mark_width_m * px_per_m / 2;
+  const Point2 shift = Point2{scene.cols, scene.rows} / (2 * px_per_m) - (lo + hi) / 2;
+  std::vector<Point2> polyline;
+  for (auto& side : placed) {
     for (auto& p : side) {
       p += shift;
-      polyline_px.push_back(p * px_per_m);
+      polyline.push_back(p * px_per_m);
     }
   }
+  scene.strokes_px.push_back(std::move(polyline));
+  return scene;
+}
+
+detail::Scene place_plate(const Plate& plate, const RenderOptions& o, std::vector<PlateMarkTruth>& marks) {
+  const double px_per_m = o.dpi / 0.0254;
+  if (!(plate.width_m > 0.0) || !(plate.height_m > 0.0) || !std::isfinite(plate.width_m * plate.height_m)) {
+    throw Error(fmt::format("render: the page must have a positive size, got {} × {} mm", plate.width_m * 1e3, plate.height_m * 1e3));
+  }
+  const double width_px = std::ceil(plate.width_m * px_per_m), height_px = std::ceil(plate.height_m * px_per_m);
+  detail::check_image_size(width_px, height_px);
+  detail::Scene scene;
+  scene.cols = static_cast<int>(width_px);
+  scene.rows = static_cast<int>(height_px);
+  scene.radius_px = o.mark_width_m * px_per_m / 2;
+  const double r = o.mark_width_m / 2;
+  for (std::size_t k = 0; k < plate.marks.size(); ++k) {
+    const auto& mark = plate.marks[k];
+    if (mark.sides.empty()) throw Error(fmt::format("render: mark {} has no path", k + 1));
+    Point2 lo{1e300, 1e300}, hi{-1e300, -1e300};
+    for (const auto& side : mark.sides) {
+      if (side.size() < 2) throw Error(fmt::format("render: a side of mark {} has fewer than two points", k + 1));
+      for (const auto& p : side) {
+        if (!p.allFinite()) throw Error(fmt::format("render: a point of mark {} is not finite", k + 1));
+        lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+      }
+    }
+    if (lo.x() - r < 0 || lo.y() - r < 0 || hi.x() + r > plate.width_m || hi.y() + r > plate.height_m) {
+      throw Error(fmt::format("render: mark {} (x {:.2f}..{:.2f} mm, y {:.2f}..{:.2f} mm) does not fit on the {:.1f} × {:.1f} mm page",
+                              k + 1, lo.x() * 1e3, hi.x() * 1e3, lo.y() * 1e3, hi.y() * 1e3, plate.width_m * 1e3, plate.height_m * 1e3));
+    }
+    PlateMarkTruth truth;
+    truth.sides = mark.sides;
+    truth.closed = mark.closed;
+    truth.truth = evaluation::measure_sides(mark.sides, mark.closed, o.truth_options);
+    truth.box_m = cv::Rect2d(lo.x(), lo.y(), hi.x() - lo.x(), hi.y() - lo.y());
+    marks.push_back(std::move(truth));
+    std::vector<Point2> polyline;
+    for (const auto& p : joined(mark.sides)) polyline.push_back(p * px_per_m);
+    scene.strokes_px.push_back(std::move(polyline));
+  }
+  for (const auto& label : plate.labels) {
+    if (!label.at_m.allFinite() || !(label.height_m > 0.0) || label.height_m > 0.1) {
+      throw Error(fmt::format("render: label '{}' needs a finite position and a height in (0, 100] mm", label.text));
+    }
+    if (label.at_m.x() < 0 || label.at_m.y() - label.height_m < 0 || label.at_m.x() > plate.width_m || label.at_m.y() > plate.height_m) {
+      throw Error(fmt::format("render: label '{}' at x = {:.1f} mm, y = {:.1f} mm is not on the page", label.text,
+                              label.at_m.x() * 1e3, label.at_m.y() * 1e3));
+    }
+    scene.labels.push_back({label.text, label.at_m * px_per_m, label.height_m * px_per_m});
+  }
+  return scene;
+}
+
+}  // namespace
+
+cv::Size rendered_size(const std::vector<std::vector<Point2>>& sides, const RenderOptions& o) {
+  detail::check_render_options(o);
+  std::vector<std::vector<Point2>> placed;
+  const detail::Scene scene = place(sides, o, placed);
+  return {scene.cols, scene.rows};
+}
+
+RenderedScan render_scan(const std::vector<std::vector<Point2>>& sides, bool closed, const RenderOptions& o, const RowSink& sink) {
+  detail::check_render_options(o);
+  RenderedScan scan;
+  const detail::Scene scene = place(sides, o, scan.sides);
   scan.dpi = o.dpi;
   scan.mark_width_m = o.mark_width_m;
   scan.closed = closed;
   scan.truth = evaluation::measure_sides(scan.sides, closed, o.truth_options);
-
-  cv::Mat coverage = cv::Mat::zeros(rows, cols, CV_32F);
-  draw_stroke_coverage(coverage, polyline_px, o.mark_width_m * px_per_m / 2);
-  if (o.blur_px > 0.0) cv::GaussianBlur(coverage, coverage, cv::Size(0, 0), o.blur_px);
-
-  cv::RNG rng(o.seed);
-  cv::Mat specks = cv::Mat::zeros(rows, cols, CV_32F);
-  for (int i = 0; i < o.specks; ++i) {
-    const Point2 at{rng.uniform(0.0, static_cast<double>(cols)), rng.uniform(0.0, static_cast<double>(rows))};
-    const double radius = rng.uniform(1.0, 4.0), strength = rng.uniform(0.5, 0.9);
-    const cv::Rect box(std::max(0, static_cast<int>(at.x() - 6)), std::max(0, static_cast<int>(at.y() - 6)), 13, 13);
-    const cv::Rect clipped = box & cv::Rect(0, 0, cols, rows);
-    cv::Mat local = cv::Mat::zeros(clipped.size(), CV_32F);
-    draw_stroke_coverage(local, {at - Point2{clipped.x, clipped.y}}, radius);
-    specks(clipped) = cv::max(specks(clipped), local * strength);
-  }
-  const cv::Mat texture = o.texture > 0.0 ? fibre_texture(rows, cols, rng) : cv::Mat::zeros(rows, cols, CV_32F);
-
-  const double k = 1.0 - o.ink_level / o.paper_level;
-  const double full_scale = o.bit_depth == 8 ? 255.0 : 65535.0;
-  cv::Mat grey(rows, cols, o.bit_depth == 8 ? CV_8U : CV_16U);
-  cv::Mat noise_row(1, cols, CV_32F);
-  for (int y = 0; y < rows; ++y) {
-    rng.fill(noise_row, cv::RNG::NORMAL, 0.0, 1.0);
-    const float* cov = coverage.ptr<float>(y);
-    const float* tex = texture.ptr<float>(y);
-    const float* spk = specks.ptr<float>(y);
-    const float* nz = noise_row.ptr<float>(0);
-    const double yn = static_cast<double>(y) / rows;
-    for (int x = 0; x < cols; ++x) {
-      const double illumination = 1.0 - o.shading * (0.6 * x / cols + 0.4 * yn * yn);
-      const double paper = o.paper_level * illumination * (1.0 + o.texture * tex[x]);
-      const double v = paper * (1.0 - k * cov[x]) * (1.0 - k * spk[x]) + o.noise * nz[x];
-      const double q = std::clamp(std::round(v * full_scale), 0.0, full_scale);
-      if (o.bit_depth == 8) {
-        grey.ptr<std::uint8_t>(y)[x] = static_cast<std::uint8_t>(q);
-      } else {
-        grey.ptr<std::uint16_t>(y)[x] = static_cast<std::uint16_t>(q);
-      }
-    }
-  }
-  if (o.colour) {
-    // A warm paper tone; the grey conversion of this colour is proportional to the grey image.
-    std::vector<cv::Mat> channels{grey * 0.90, grey * 0.97, grey.clone()};
-    cv::merge(channels, scan.image);
-  } else {
-    scan.image = grey;
-  }
+  detail::rasterise(scene, o, sink);
   return scan;
+}
+
+RenderedScan render_scan(const std::vector<std::vector<Point2>>& sides, bool closed, const RenderOptions& o) {
+  detail::check_render_options(o);
+  RenderedScan scan;
+  const detail::Scene scene = place(sides, o, scan.sides);
+  scan.dpi = o.dpi;
+  scan.mark_width_m = o.mark_width_m;
+  scan.closed = closed;
+  scan.truth = evaluation::measure_sides(scan.sides, closed, o.truth_options);
+  scan.image = detail::rasterise_image(scene, o);
+  return scan;
+}
+
+RenderedPlate render_plate(const Plate& plate, const RenderOptions& o, const RowSink& sink) {
+  detail::check_render_options(o);
+  RenderedPlate out;
+  const detail::Scene scene = place_plate(plate, o, out.marks);
+  out.dpi = o.dpi;
+  out.mark_width_m = o.mark_width_m;
+  detail::rasterise(scene, o, sink);
+  return out;
+}
+
+RenderedPlate render_plate(const Plate& plate, const RenderOptions& o) {
+  detail::check_render_options(o);
+  RenderedPlate out;
+  const detail::Scene scene = place_plate(plate, o, out.marks);
+  out.dpi = o.dpi;
+  out.mark_width_m = o.mark_width_m;
+  out.image = detail::rasterise_image(scene, o);
+  return out;
 }
 
 }  // namespace stiffpath::vision

@@ -58,3 +58,33 @@ std::vector<std::vector<Point2>> sample_shape(const PathShape& shape, const Wigg
 }
 
 }  // namespace stiffpath::vision
+
+namespace stiffpath::vision {
+
+std::vector<Point2> resample_path(const std::vector<Point2>& points, double step_m) {
+  if (!(step_m > 0.0)) throw Error(fmt::format("resampling step must be positive, got {} m", step_m));
+  double total = 0.0;
+  for (std::size_t i = 1; i < points.size(); ++i) total += (points[i] - points[i - 1]).norm();
+  if (points.size() < 2 || !(total > 0.0)) throw Error("a path needs at least two distinct points");
+  if (!std::isfinite(total)) throw Error("a path point is not finite");
+  const auto count = static_cast<std::size_t>(std::ceil(total / step_m));
+  const double step = total / static_cast<double>(count);
+  std::vector<Point2> out;
+  out.reserve(count + 1);
+  out.push_back(points.front());
+  double s0 = 0.0;  // arc length at points[i - 1]
+  std::size_t k = 1;  // next sample: arc length k·step
+  for (std::size_t i = 1; i < points.size() && k < count; ++i) {
+    const Point2 d = points[i] - points[i - 1];
+    const double len = d.norm();
+    while (k < count && static_cast<double>(k) * step <= s0 + len) {
+      out.push_back(points[i - 1] + d * ((static_cast<double>(k) * step - s0) / len));
+      ++k;
+    }
+    s0 += len;
+  }
+  out.push_back(points.back());
+  return out;
+}
+
+}  // namespace stiffpath::vision

@@ -20,7 +20,10 @@ inline float pixel(const cv::Mat& m, int row, int col) {
 //! The image averaged over cell × cell blocks, the paper level and the darkness 1 − mean/paper.
 struct CoarseGrid {
   int cell = 4;
-  cv::Mat mean, background, darkness;  //!< CV_32F, ceil(rows/cell) × ceil(cols/cell)
+  cv::Mat darkness;  //!< CV_32F, ceil(rows/cell) × ceil(cols/cell)
+  //! Paper level: the median grey of each block of 16 × 16 cells (CV_32F), between whose centres it is
+  //! interpolated bilinearly (kept at this resolution: a grid of cells would cost a float per 16 px).
+  cv::Mat blocks;
   double median = 0, sigma = 0, threshold = 0;  //!< of darkness over all cells
   cv::Mat mask;                        //!< CV_8U, 1 where darkness > threshold
   //! Paper level at a full-resolution pixel centre, bilinear between cell centres.
@@ -28,17 +31,38 @@ struct CoarseGrid {
 };
 CoarseGrid build_coarse_grid(const cv::Mat& grey, int cell);
 
-//! The mark: one connected dark feature of the coarse grid.
+//! "x = … mm, y = … mm" of a position (px of the analysed image or region) in the scan's frame.
+std::string position_text(const Point2& px, double px_per_m, const ScanOptions& options);
+
+//! A connected dark feature of the coarse grid (8-connected cells darker than the threshold).
+struct Feature {
+  int label = 0;           //!< its label in Features::labels
+  double mass = 0;         //!< Σ darkness of its cells
+  double extent_px = 0;    //!< diagonal of its bounding box (px)
+  cv::Rect box;            //!< bounding box (cells)
+  std::string border;      //!< "left", "top", "right", "bottom" if it touches that border, else empty
+};
+//! Every dark feature, in the order of their top-left-most cells (reading order of their top edges).
+struct Features {
+  cv::Mat labels;             //!< CV_32S, 0 = paper
+  std::vector<Feature> list;  //!< list[i].label == i + 1
+};
+Features find_features(const CoarseGrid& grid);
+
+//! A mark: one feature's cells and what they tell about it.
 struct MarkComponent {
-  cv::Mat labels;                //!< CV_32S component labels of the coarse grid
-  int label = 0;                 //!< the mark's label
+  int label = 0;                 //!< the feature's label
   std::vector<Point2> cells_px;  //!< centres of its cells (px)
   std::vector<double> weights;   //!< their darkness
   double full_darkness = 0;      //!< darkness of fully covered cells (90th percentile)
   double width_px = 0;           //!< rough width: area / half the contour length
   int specks = 0;
   std::vector<std::string> warnings;
+  cv::Rect box;                  //!< bounding box of its cells (cells)
 };
+MarkComponent mark_of(const CoarseGrid& grid, const Features& features, const Feature& feature);
+//! The one mark of a scan: the heaviest feature; a second one of ≥ 20 % its size, or the mark touching
+//! the border, is an error; features under min_mark_length_m are specks.
 MarkComponent find_mark(const CoarseGrid& grid, double px_per_m, const ScanOptions& options);
 
 //! A side found on the coarse grid, in px; start and end are corners or rough free ends.
@@ -48,9 +72,18 @@ struct CoarseSide {
   bool start_is_corner = false, end_is_corner = false;
   double start_angle_rad = 0, end_angle_rad = 0;  //!< interior angle at a corner
 };
+//! Marks a cell that belongs to no side.
+inline constexpr std::uint8_t kNoSide = 255;
 struct CoarsePath {
   std::vector<CoarseSide> sides;
   bool closed = false;
+  double width_px = 0;  //!< the mark's rough width (px)
+  cv::Rect box;   //!< the mark's bounding box (cells)
+  cv::Mat owner;  //!< CV_8U over `box`: the side (index in `sides`) owning each cell of the mark, else kNoSide
+  //! The side owning grid cell (gx, gy), or kNoSide.
+  [[nodiscard]] int owner_at(int gx, int gy) const {
+    return box.contains(cv::Point(gx, gy)) ? owner.at<std::uint8_t>(gy - box.y, gx - box.x) : kNoSide;
+  }
 };
 CoarsePath find_sides(const MarkComponent& mark, int n_sides, double px_per_m, const ScanOptions& options);
 
@@ -62,9 +95,22 @@ struct SideTrace {
   std::size_t sections = 0, rejected = 0;
   double width = 0;                       //!< median width (px)
   double darkness = 0;                    //!< darkness of the mark's core
+  double end_uncertainty = 0;             //!< sum of the free ends' error bounds along the side (px; 0 for round ends)
   std::vector<std::string> warnings;
 };
-SideTrace trace_side(const cv::Mat& grey, const CoarseGrid& grid, const MarkComponent& mark, const CoarseSide& side,
-                     double px_per_m, const ScanOptions& options);
+//! Side `k` of `path`.
+SideTrace trace_side(const cv::Mat& grey, const CoarseGrid& grid, const CoarsePath& path, std::size_t k, double px_per_m,
+                     const ScanOptions& options);
+
+//! Checks the image, resolution, options and region; throws stiffpath::Error naming options.label.
+void check_scan_input(const cv::Mat& grey, double dpi, const ScanOptions& options);
+
+//! The sides of a mark: options.sides of them, or for 0 the fewest (1..max_auto_sides) that work.
+CoarsePath find_path(const MarkComponent& mark, double px_per_m, const ScanOptions& options);
+
+//! Everything analyse_scan measures about one mark of the (region's) image; positions in the whole
+//! image's frame. dpi and the image size are left for the caller.
+ScanResult measure_mark(const cv::Mat& grey, const CoarseGrid& grid, const MarkComponent& mark, double px_per_m,
+                        const ScanOptions& options);
 
 }  // namespace stiffpath::vision::detail

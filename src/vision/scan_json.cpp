@@ -9,6 +9,7 @@ nlohmann::json to_json(const ScanResult& r) {
   using evaluation::round_for_json;
   nlohmann::json out = evaluation::to_json(r.metrics);
   out["width_mm"] = round_for_json(units::m_to_mm(r.width_m));
+  out["length_uncertainty_mm"] = round_for_json(units::m_to_mm(r.length_uncertainty_m));
   if (out.contains("sides")) {
     for (std::size_t k = 0; k < r.sides.size(); ++k) {
       out["sides"][k]["width_mm"] = round_for_json(units::m_to_mm(r.sides[k].width_m));

@@ -20,6 +20,25 @@ double b_on(const SectionFrame& fr, const evaluation::Line2& l, double a) {
   return fr.b_of(l.at((a - fr.a_of(l.origin)) / fr.a_of(l.direction)));
 }
 
+// The pixel box holding this side's coarse cells at or beyond `seed` along `outward`, widened by `margin`.
+cv::Rect end_region(const SideSections& side, const Point2& seed, const Point2& outward, double margin) {
+  const CoarsePath& path = *side.path;
+  const int cell = side.grid->cell;
+  const double from = seed.dot(outward) - 2.0 - cell;
+  double x0 = seed.x(), x1 = seed.x(), y0 = seed.y(), y1 = seed.y();
+  for (int gy = path.box.y; gy < path.box.y + path.box.height; ++gy) {
+    for (int gx = path.box.x; gx < path.box.x + path.box.width; ++gx) {
+      if (path.owner_at(gx, gy) != side.side) continue;
+      const Point2 c{(gx + 0.5) * cell, (gy + 0.5) * cell};
+      if (c.dot(outward) < from) continue;
+      x0 = std::min(x0, c.x()), x1 = std::max(x1, c.x()), y0 = std::min(y0, c.y()), y1 = std::max(y1, c.y());
+    }
+  }
+  const double pad = margin + cell;
+  return {cv::Point(static_cast<int>(std::floor(x0 - pad)), static_cast<int>(std::floor(y0 - pad))),
+          cv::Point(static_cast<int>(std::ceil(x1 + pad)), static_cast<int>(std::ceil(y1 + pad)))};
+}
+
 }  // namespace
 
 Paper section_paper(const SideSections& side, const Section& s) {
@@ -41,7 +60,7 @@ evaluation::Line2 end_line(const SideSections& side, bool low, std::size_t count
   std::vector<Point2> pts;
   for (int k = 0; k <= side.body_last - side.body_first && pts.size() < count; ++k) {
     const Section& s = side.at(low ? side.body_first + k : side.body_last - k);
-    if (!s.rejected) pts.push_back(side.frame.xy(s.a + 0.5, s.centre));
+    if (s.body && !s.rejected) pts.push_back(side.frame.xy(s.a + 0.5, s.centre));
   }
   return evaluation::fit_line_tls(pts).line;
 }
@@ -57,53 +76,62 @@ FreeEnd measure_free_end(const SideSections& side, const evaluation::Line2& side
   const SectionFrame& fr = side.frame;
   const evaluation::Line2 l = end_line(side, low, side.end_fit);
   // Width and darkness of the mark's last stretch before the end (both from the same darkness scale).
+  // A section cuts the band at the band's own local angle, which near a wiggling end is not the side's:
+  // its darkness integral is k·w/cos θ with tan θ the local slope of the centre line.
   std::vector<double> ml, kl;
   int seed_a = low ? side.body_first : side.body_last;
   bool seeded = false;
   for (int k = 0; k <= side.body_last - side.body_first && ml.size() < side.end_fit; ++k) {
     const int a = low ? side.body_first + k : side.body_last - k;
     const Section& s = side.at(a);
-    if (s.rejected) continue;
-    ml.push_back(s.mass), kl.push_back(s.core);
+    if (!s.body || s.rejected) continue;
+    ml.push_back(s.mass / std::hypot(1.0, local_slope(side, a))), kl.push_back(s.core);
     if (!seeded) seed_a = a, seeded = true;
   }
-  const double core = median(kl), k_local = core / side.core_factor, w = median(ml) / k_local * side.cos_t;
+  const double core = median(kl), k_local = core / side.core_factor, w = median(ml) / k_local;
   const double sigma = std::sqrt(side.blur_px * side.blur_px + 1.0 / 12);  // blur and the pixels' own area
   const double dir = low ? -1.0 : 1.0;  // outward along a
   const Point2 outward = side_line.direction * (fr.a_of(side_line.direction) * dir > 0 ? 1.0 : -1.0);
 
-  // The search box: from the last body section out to the last section, wide enough for a hook.
-  const double reach = side.h_wide + 2 * w + options.band_margin_px;
-  const int a_in = low ? seed_a + 2 : seed_a - 2, a_out = low ? side.first - 2 : side.last + 2;
-  double b_lo = 1e300, b_hi = -1e300;
-  for (const int a : {a_in, a_out}) b_lo = std::min(b_lo, b_on(fr, l, a + 0.5) - reach), b_hi = std::max(b_hi, b_on(fr, l, a + 0.5) + reach);
-  const Point2 p0 = fr.xy(std::min(a_in, a_out), b_lo), p1 = fr.xy(std::max(a_in, a_out) + 1, b_hi);
+  // The search box: every cell of this side at or beyond the seed along u, widened by the mark's width
+  // and the blur, so a hook or a wiggle of any size is inside it.
   TipSearch search;
-  search.box = cv::Rect(cv::Point(static_cast<int>(std::floor(std::min(p0.x(), p1.x()))), static_cast<int>(std::floor(std::min(p0.y(), p1.y())))),
-                        cv::Point(static_cast<int>(std::ceil(std::max(p0.x(), p1.x()))), static_cast<int>(std::ceil(std::max(p0.y(), p1.y())))));
   search.seed = fr.xy(seed_a + 0.5, side.at(seed_a).centre);
   search.outward = outward;
   search.threshold = 0.5 * core;
+  search.box = end_region(side, search.seed, outward, w + options.band_margin_px + 2);
   FreeEnd result;
-  const std::optional<Point2> far = farthest_dark_point(*fr.grey, *side.grid, search);
+  const std::optional<TipExtreme> far = farthest_dark_point(*fr.grey, *side.grid, search);
   if (!far) {
     result.cap = search.seed;
     result.round = false;
+    result.uncertainty_px = 1e9;
     return result;
   }
+  result.continues = far->at_box_edge;
   TipGuess guess;
   guess.radius = w / 2;
-  guess.centre = *far - outward * (guess.radius - 0.5);
+  guess.centre = far->point - outward * (guess.radius - 0.5);
   guess.outward = outward;
   guess.darkness = k_local;
   guess.sigma = sigma;
   const TipFit fit = fit_end_tip(*fr.grey, *side.grid, guess);
   result.radius = fit.radius;
   result.rms = fit.rms;
-  result.cap = fit.centre + outward * (fit.radius - w / 2);
   // A tip sharper than the spot cannot be drawn by it; a much blunter one is a cut, or a dot burnt larger
   // than the spot, whose centre is ambiguous by R − w/2. A square cut also misfits at its corners.
   result.round = fit.converged && fit.rms < 0.06 && fit.radius > 0.75 * (w / 2) && fit.radius < 1.5 * (w / 2);
+  // The footprint's extent along u from the fit, or from the farthest dark pixel (its centre is within
+  // about a pixel of the edge at half darkness) when the fit strays from it.
+  const double pixel_extent = far->point.dot(outward) + 0.5;
+  double extent = fit.centre.dot(outward) + fit.radius;
+  if (!fit.converged || std::abs(extent - pixel_extent) > w / 2) extent = pixel_extent;
+  const Point2 across = fit.converged ? fit.centre - outward * fit.centre.dot(outward) : far->point - outward * far->point.dot(outward);
+  result.cap = across + outward * (extent - w / 2);
+  // Drawn by a round spot of diameter w, the path reaches exactly w/2 short of the footprint's extent;
+  // a dot burnt larger than the spot (radius R) has its centre up to R − w/2 farther in, and an end
+  // cut or smeared otherwise is known to about half the width (and a pixel, for the edge's position).
+  if (!result.round) result.uncertainty_px = std::max(w / 2 + 1.0, fit.converged ? fit.radius - w / 2 : 0.0);
   return result;
 }
 

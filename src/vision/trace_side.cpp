@@ -25,16 +25,16 @@ double b_on(const SectionFrame& fr, const Line2& l, double a) {
   return fr.b_of(l.at((a - fr.a_of(l.origin)) / fr.a_of(l.direction)));
 }
 
-// Darkness-weighted centre of the mark's coarse cells in the cell column of section a, within reach of b.
-double coarse_guess(const SideSections& side, const MarkComponent& mark, int a, double b, double reach) {
+// Darkness-weighted centre of the side's own coarse cells in the cell column of section a (b if none).
+double coarse_guess(const SideSections& side, const CoarsePath& path, int k, int a, double b) {
   const CoarseGrid& grid = *side.grid;
   const int cell = grid.cell, ga = (a * 2 + 1) / (2 * cell);
   const bool columns = side.frame.columns;
-  const int nb = columns ? mark.labels.rows : mark.labels.cols;
+  const cv::Rect& box = path.box;
   double sw = 0, sb = 0;
-  for (int gb = std::max(0, static_cast<int>((b - reach) / cell)); gb <= std::min(nb - 1, static_cast<int>((b + reach) / cell)); ++gb) {
+  for (int gb = columns ? box.y : box.x; gb < (columns ? box.y + box.height : box.x + box.width); ++gb) {
     const int row = columns ? gb : ga, col = columns ? ga : gb;
-    if (mark.labels.at<int>(row, col) != mark.label) continue;
+    if (path.owner_at(col, row) != k) continue;
     const double w = grid.darkness.at<float>(row, col);
     sw += w;
     sb += w * (gb + 0.5) * cell;
@@ -43,7 +43,9 @@ double coarse_guess(const SideSections& side, const MarkComponent& mark, int a, 
 }
 
 // Flags sections whose width is far from the median (dust on the mark, gaps) or whose centre, measured
-// from the side's line, is off its neighbours'.
+// from the side's line, is off its neighbours' (their median, carried to the section along the median
+// slope of the offsets, so that a side bending near its end, where the neighbours are all on one side,
+// is not taken for an outlier).
 std::size_t reject_outliers(SideSections& side, const Line2& line) {
   std::vector<Section*> body;
   for (auto& s : side.secs) if (s.body) body.push_back(&s);
@@ -52,11 +54,15 @@ std::size_t reject_outliers(SideSections& side, const Line2& line) {
   const double w_med = median(widths);
   for (const double w : widths) dev.push_back(std::abs(w - w_med));
   const double w_tol = std::max(0.15 * w_med, 6 * 1.4826 * median(dev));
+  std::vector<double> offset(body.size());
+  for (std::size_t j = 0; j < body.size(); ++j) offset[j] = body[j]->centre - b_on(side.frame, line, body[j]->a + 0.5);
   for (std::size_t k = 0; k < body.size(); ++k) {
-    std::vector<double> near;
-    auto offset = [&](std::size_t j) { return body[j]->centre - b_on(side.frame, line, body[j]->a + 0.5); };
-    for (std::size_t j = k >= 10 ? k - 10 : 0; j < std::min(body.size(), k + 11); ++j) near.push_back(offset(j));
-    resid[k] = std::abs(offset(k) - median(near));
+    const std::size_t lo = k >= 10 ? k - 10 : 0, hi = std::min(body.size(), k + 11);
+    std::vector<double> near, slopes;
+    for (std::size_t j = lo; j + 1 < hi; ++j) slopes.push_back((offset[j + 1] - offset[j]) / (body[j + 1]->a - body[j]->a));
+    const double slope = median(slopes);
+    for (std::size_t j = lo; j < hi; ++j) near.push_back(offset[j] - slope * (body[j]->a - body[k]->a));
+    resid[k] = std::abs(offset[k] - median(near));
   }
   const double c_tol = std::max(0.5, 6 * 1.4826 * median(resid));
   std::size_t rejected = 0;
@@ -69,19 +75,22 @@ std::size_t reject_outliers(SideSections& side, const Line2& line) {
 
 }  // namespace
 
-SideTrace trace_side(const cv::Mat& grey, const CoarseGrid& grid, const MarkComponent& mark, const CoarseSide& side,
-                     double px_per_m, const ScanOptions& o) {
+SideTrace trace_side(const cv::Mat& grey, const CoarseGrid& grid, const CoarsePath& path, std::size_t index, double px_per_m,
+                     const ScanOptions& o) {
+  const CoarseSide& side = path.sides[index];
   const SourceLocation where{o.label, 0, 0};
   SideTrace out;
   const Line2& line = side.line;
   SideSections ss;
   ss.frame = SectionFrame{&grey, std::abs(line.direction.x()) >= std::abs(line.direction.y())};
   ss.grid = &grid;
+  ss.path = &path;
+  ss.side = static_cast<int>(index);
   const SectionFrame& fr = ss.frame;
   const double da = fr.a_of(line.direction);
   ss.cos_t = std::abs(da);
   ss.tan_t = std::abs(fr.b_of(line.direction)) / ss.cos_t;
-  const double w0 = mark.width_px, s0 = w0 / ss.cos_t, h_wide0 = s0 / 2 + o.band_margin_px + 2;
+  const double w0 = path.width_px, s0 = w0 / ss.cos_t, h_wide0 = s0 / 2 + o.band_margin_px + 2;
   const auto to_mm = [&](double px) { return px / px_per_m * 1e3; };
 
   // Sections stop short of corners (so no window or flank reaches the next side) and of free ends.
@@ -89,10 +98,13 @@ SideTrace trace_side(const cv::Mat& grey, const CoarseGrid& grid, const MarkComp
     const double need = (h_wide0 + o.flank_px + w0 / 2 + 4) / std::max(std::sin(angle), 0.1);
     const double want = o.metrics.corner_trim_m * px_per_m;
     if (need > want) {
-      out.warnings.push_back(fmt::format("the corner at x = {:.2f} mm, y = {:.2f} mm is sharp ({:.0f}°): cross-sections stop "
-                                         "{:.2f} mm from it", to_mm(at.x()), to_mm(at.y()), angle * 180 / std::numbers::pi, to_mm(need)));
+      out.warnings.push_back(fmt::format("the corner at {} is sharp ({:.0f}°): cross-sections stop "
+                                         "{:.2f} mm from it", position_text(at, px_per_m, o), angle * 180 / std::numbers::pi, to_mm(need)));
     }
-    return std::max(need, want);
+    // Sections run a little closer than the trim to the coarse corner: the metrics trim again at the
+    // measured corner, by the same distance as for simulated paths, so the coarse corner's error and a
+    // side bending off its line near the corner do not change which part of the side is measured.
+    return std::max(need, want - std::max(3.0 * o.cell_px, 0.15e-3 * px_per_m));
   };
   // A free end's rough position (the extreme coarse cell) is within a cell of the mark's tip.
   const double cut = 0.6 * w0 + 0.5 * w0 * ss.tan_t + o.cell_px + 1.5;
@@ -112,7 +124,6 @@ SideTrace trace_side(const cv::Mat& grey, const CoarseGrid& grid, const MarkComp
   if (ss.first < 0 || ss.last >= fr.size_a()) throw Error(where, "the mark's end is too close to the image border to be measured");
 
   // Pass 1: centres with the coarse paper level, from a guess on the coarse grid.
-  const double reach = o.sides == 1 ? 1e9 : s0 / 2 + 3.0 * o.cell_px;
   std::vector<double> mass1, core1;
   for (int a = ss.first; a <= ss.last; ++a) {
     Section s;
@@ -121,7 +132,7 @@ SideTrace trace_side(const cv::Mat& grey, const CoarseGrid& grid, const MarkComp
     ss.secs.push_back(s);
     if (!s.body) continue;
     const Paper paper = section_paper(ss, s);
-    double c = coarse_guess(ss, mark, a, b_on(fr, line, a + 0.5), reach);
+    double c = coarse_guess(ss, path, static_cast<int>(index), a, b_on(fr, line, a + 0.5));
     c = centred_sums(fr, a, c, s0 / 2 + 3, paper).centroid(c);
     for (int it = 0; it < 2; ++it) c = centred_sums(fr, a, c, s0 / 2 + 2, paper).centroid(c);
     ss.secs.back().centre = c;
@@ -134,6 +145,13 @@ SideTrace trace_side(const cv::Mat& grey, const CoarseGrid& grid, const MarkComp
   ss.h_wide = extent / 2 + o.band_margin_px;
   const double h_tight = extent / 2 + 1;
   ss.end_fit = static_cast<std::size_t>(std::max(20.0, 1.5e-3 * px_per_m * ss.cos_t));
+  if (path.sides.size() > 1) {
+    drop_crowded_sections(ss, side, ss.h_wide + o.flank_px, k1 / 3, px_per_m, o);
+    if (ss.crowded_elsewhere > 0) {
+      out.warnings.push_back(fmt::format("{} cross-sections of a side were left out where another side of the mark comes within "
+                                         "their reach away from the corners (the path crosses or touches itself)", ss.crowded_elsewhere));
+    }
+  }
 
   // Paper level from both flanks of each section, averaged along the side.
   const Line2 low_line = low_free ? end_line(ss, true, ss.end_fit) : line;
@@ -141,6 +159,7 @@ SideTrace trace_side(const cv::Mat& grey, const CoarseGrid& grid, const MarkComp
   std::vector<std::optional<double>> lo(ss.secs.size()), hi(ss.secs.size());
   for (std::size_t i = 0; i < ss.secs.size(); ++i) {
     Section& s = ss.secs[i];
+    if (s.crowded) continue;
     if (!s.body) s.centre = b_on(fr, s.a < ss.body_first ? low_line : high_line, s.a + 0.5);
     const int lo_end = static_cast<int>(std::floor(s.centre - ss.h_wide)), hi_start = static_cast<int>(std::floor(s.centre + ss.h_wide)) + 1;
     lo[i] = flank_median(fr, s.a, lo_end - o.flank_px, lo_end);
@@ -183,7 +202,11 @@ SideTrace trace_side(const cv::Mat& grey, const CoarseGrid& grid, const MarkComp
   ss.darkness = k;
   ss.core_factor = core / k;
   ss.blur_px = ss.cos_t * sigma_b;
-  for (auto& s : ss.secs) s.width = s.mass / ss.darkness * ss.cos_t;
+  // A section crosses the band at the band's local angle θ (tan θ = the centre line's slope db/da), so its
+  // darkness integral is k·w/cos θ: for a straight side θ is the side's angle, along a wiggle it varies.
+  for (auto& s : ss.secs) {
+    if (s.body) s.width = s.mass / ss.darkness / std::hypot(1.0, local_slope(ss, s.a));
+  }
   if (clipped) out.warnings.push_back("the mark comes so close to the image border that some cross-sections are cut short");
 
   out.rejected = reject_outliers(ss, line);
@@ -202,9 +225,17 @@ SideTrace trace_side(const cv::Mat& grey, const CoarseGrid& grid, const MarkComp
     if (!(low ? low_free : high_free)) continue;
     const FreeEnd end = measure_free_end(ss, body_line, low, o);
     ((da > 0) == low ? out.start_cap : out.end_cap) = end.cap;
+    if (end.continues) {
+      throw Error(where, fmt::format("the mark goes on past the end of a side near {}, so that end "
+                                     "cannot be measured: it is not a free end (a corner that was not found, or a mark with "
+                                     "more sides than asked for)", position_text(end.cap, px_per_m, o)));
+    }
     if (!end.round) {
-      out.warnings.push_back(fmt::format("the mark's end near x = {:.2f} mm, y = {:.2f} mm is not a round laser-spot end; "
-                                         "its position may be off by up to half the mark's width", to_mm(end.cap.x()), to_mm(end.cap.y())));
+      out.end_uncertainty += end.uncertainty_px;
+      out.warnings.push_back(fmt::format("the mark's end near {} is not a round laser-spot end "
+                                         "(tip radius {:.3f} mm for a {:.3f} mm wide mark); its position along the side may be off "
+                                         "by up to {:.3f} mm", position_text(end.cap, px_per_m, o), to_mm(end.radius),
+                                         to_mm(out.width), to_mm(end.uncertainty_px)));
     }
   }
   if (da < 0) std::reverse(out.centres.begin(), out.centres.end()), std::reverse(out.widths.begin(), out.widths.end());

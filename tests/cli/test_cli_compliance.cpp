@@ -10,7 +10,7 @@ namespace {
 
 TEST(CliCompliance, FitThenPredictMatchesTheBuiltInModel) {
   TempDir dir;
-  const CliResult fit = run_cli("fit thesis --mechanism oc --method bilinear -o model.json", dir.path());
+  const CliResult fit = run_cli("fit --robot oc-gu --method bilinear -o model.json", dir.path());
   ASSERT_EQ(fit.exit_code, 0) << fit.err;
   ASSERT_TRUE(std::filesystem::exists(dir / "model.json"));
   const CliResult a = run_cli("predict --model model.json --x-mm 200 --y-mm 20 --fx-n 120 --fy-n -60 --json", dir.path());
@@ -34,8 +34,10 @@ TEST(CliCompliance, PredictAtAGridPointReproducesTheThesisTable) {
 }
 
 TEST(CliCompliance, CvReportsTheIssueNumbers) {
-  const CliResult r = run_cli("cv thesis --mechanism oc --json");
+  const CliResult r = run_cli("cv thesis --robot oc-gu --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.json()["rows"], "OC");
+  EXPECT_TRUE(r.json()["could_not_run"].empty());
   const auto methods = r.json()["methods"];
   ASSERT_EQ(methods.size(), 5u);
   EXPECT_EQ(methods[0]["method"], "bilinear");
@@ -49,27 +51,34 @@ TEST(CliCompliance, ErrorsAreNamedAndLeaveNoFile) {
   write_text(dir / "bad.csv",
              "mechanism,direction,point,x_mm,y_mm,step,force_kgf,F_N,F_nominal_N,dx_mm,dy_mm,dz_mm,rx_deg,ry_deg\n"
              "OC,+x,x1y1,172.132,-75,1,5,47.95,50,0.1,abc,,,\n");
-  const CliResult r = run_cli("fit bad.csv --mechanism oc -o m.json", dir.path());
+  const CliResult r = run_cli("fit bad.csv --robot oc-gu -o m.json", dir.path());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("bad.csv:2:"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("column 'dy_mm': 'abc' is not a finite number"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "m.json"));
-  const CliResult m = run_cli("fit thesis --mechanism oc --method kriging -o m.json", dir.path());
+  const CliResult m = run_cli("fit --robot oc-gu --method kriging -o m.json", dir.path());
   EXPECT_EQ(m.exit_code, 2);
   EXPECT_NE(m.err.find("unknown compliance method 'kriging'"), std::string::npos) << m.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "m.json"));
-  write_text(dir / "broken.json", "{\"format\": \"stiffpath-compliance-model\", \"version\": 1, \"method\": 3}");
+  write_text(dir / "broken.json", "{\"format\": \"stiffpath-compliance-model\",\n \"version\": 1,\n \"method\": 3}");
   const CliResult b = run_cli("predict --model broken.json --x-mm 200 --y-mm 0 --fx-n 1 --fy-n 0", dir.path());
   EXPECT_EQ(b.exit_code, 2);
-  EXPECT_NE(b.err.find("broken.json.method: must be a string"), std::string::npos) << b.err;
+  EXPECT_EQ(b.err, "error: broken.json:3:2: method: must be a string, got number 3\n");
 }
 
 TEST(CliCompliance, OutsidePolicyErrorRefusesPointsOffTheGrid) {
   TempDir dir;
-  ASSERT_EQ(run_cli("fit thesis --mechanism sc --outside error -o m.json", dir.path()).exit_code, 0);
-  const CliResult r = run_cli("predict --model m.json --x-mm 290 --y-mm 0 --fx-n 10 --fy-n 0", dir.path());
+  ASSERT_EQ(run_cli("fit --robot sc-gu --outside error -o m.json", dir.path()).exit_code, 0);
+  const CliResult r = run_cli("predict --robot sc-gu --model m.json --x-mm 290 --y-mm 0 --fx-n 10 --fy-n 0", dir.path());
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("outside the model's grid"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("is more than 1 mm outside the measured region of model m.json, x [172.132, 272.132] mm"),
+            std::string::npos)
+      << r.err;
+  // Within the 1 mm margin the model clamps; --outside clamp goes on anywhere.
+  EXPECT_EQ(run_cli("predict --robot sc-gu --model m.json --x-mm 273 --y-mm 0 --fx-n 10 --fy-n 0", dir.path()).exit_code, 0);
+  EXPECT_EQ(run_cli("predict --robot sc-gu --model m.json --x-mm 290 --y-mm 0 --fx-n 10 --fy-n 0 --outside clamp",
+                    dir.path()).exit_code,
+            0);
 }
 
 TEST(CliCompliance, PlotsWriteSvgAndPng) {

@@ -22,7 +22,7 @@ TEST(CliMeasure, SimulateThenMeasureRecoversTheTruthWithinTheNoise) {
   const CliResult m = run_cli("measure camp.csv --mechanism sc-gu -o table.csv --json", dir.path());
   ASSERT_EQ(m.exit_code, 0) << m.err;
   EXPECT_EQ(m.json()["rows"].get<int>(), 150);
-  EXPECT_EQ(m.json()["build"], "SC");
+  EXPECT_EQ(m.json()["robot_rows"], "SC");
   EXPECT_EQ(m.json()["rows_with_spread"].get<int>(), 150);
   const auto truth = measurement::load_displacement_table((dir / "truth.csv").string());
   const auto got = measurement::load_displacement_table((dir / "table.csv").string());

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cli_runner.hpp"
+#include "gcode_corpus.hpp"
 #include "stiffpath/core/csv.hpp"
 
 namespace stiffpath::test {
@@ -151,6 +152,131 @@ TEST(CliPlan, RealisticMarkingJobsStayWithinLimitsAndWorkspace) {
     EXPECT_EQ(rows.back().x, 222.132) << job;  // both park at the workspace centre
     EXPECT_EQ(rows.back().y, 0.0) << job;
   }
+}
+
+TEST(CliPlan, MalformedCorpusExits2WithEveryRefusalLocatedAndNoFileLeft) {
+  const auto cases = read_corpus(fs::path(STIFFPATH_TEST_DATA_DIR) / "gcode_bad");
+  ASSERT_GE(cases.size(), 50u);
+  for (const auto& c : cases) {
+    TempDir dir;
+    std::string flags;
+    for (const auto& flag : c.flags) flags += " " + flag;
+    const CliResult r = run_cli("plan '" + c.path.string() + "'" + flags + " -o out.csv", dir.path());
+    EXPECT_EQ(r.exit_code, 2) << c.path.filename();
+    std::string expected;
+    for (const auto& line : c.expected) expected += "error: " + line + "\n";
+    EXPECT_EQ(r.err, expected) << c.path.filename();
+    EXPECT_TRUE(fs::is_empty(dir.path())) << c.path.filename() << ": no output, no temporary file";
+  }
+}
+
+TEST(CliPlan, WithJsonTheRefusalsAreOneDocumentOnStderr) {
+  TempDir dir;
+  const fs::path many = fs::path(STIFFPATH_TEST_DATA_DIR) / "gcode_bad" / "twenty_five_refusals.gcode";
+  const CliResult r = run_cli("plan '" + many.string() + "' --json -o out.csv", dir.path());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out, "");
+  const auto doc = nlohmann::json::parse(r.err);
+  ASSERT_EQ(doc["errors"].size(), 20u);
+  EXPECT_EQ(doc["omitted"].get<int>(), 5);
+  EXPECT_EQ(doc["errors"][0]["file"].get<std::string>(), many.string());
+  EXPECT_EQ(doc["errors"][0]["line"].get<int>(), 24);
+  EXPECT_EQ(doc["errors"][19]["line"].get<int>(), 43);
+  EXPECT_EQ(doc["errors"][0]["column"].get<int>(), 1);
+  EXPECT_EQ(doc["errors"][0]["message"].get<std::string>(), "G41: cutter radius compensation is not supported");
+  EXPECT_FALSE(fs::exists(dir / "out.csv"));
+
+  const auto missing = nlohmann::json::parse(run_cli("plan nothing.gcode --json", dir.path()).err);
+  EXPECT_EQ(missing["errors"][0]["file"].get<std::string>(), "nothing.gcode");
+  EXPECT_TRUE(missing["errors"][0]["line"].is_null());
+  write_text(dir / "ok.gcode", "G0 X200 Y0\nG1 X210 F600\n");
+  const CliResult flag = run_cli("plan ok.gcode --jerk nan --json", dir.path());
+  EXPECT_EQ(flag.exit_code, 2);
+  const auto flag_doc = nlohmann::json::parse(flag.err);
+  EXPECT_TRUE(flag_doc["errors"][0]["file"].is_null());
+  EXPECT_EQ(flag_doc["errors"][0]["message"].get<std::string>(), "--jerk: must be within [1, 1e+08] m/s^3, got nan");
+}
+
+TEST(CliPlan, MaxSamplesRefusesAJobBeforeWritingAndNamesItsSize) {
+  TempDir dir;
+  write_text(dir / "dwell.gcode", "G0 X200 Y0\nG4 P10\n");  // 10 s: 20 001 samples at 2 kHz
+  const CliResult refused = run_cli("plan dwell.gcode --max-samples 20000 -o out.csv", dir.path());
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_EQ(refused.err,
+            "error: dwell.gcode: the plan has 20001 samples (10.0 s at 2000 Hz, about 2.4 MB of CSV), more than the cap "
+            "of 20000; raise it with --max-samples\n");
+  EXPECT_FALSE(fs::exists(dir / "out.csv"));
+  const CliResult allowed = run_cli("plan dwell.gcode --max-samples 20001 -o out.csv --json", dir.path());
+  ASSERT_EQ(allowed.exit_code, 0) << allowed.err;
+  EXPECT_EQ(allowed.json()["samples"].get<int>(), 20001);
+  // The default cap stops a day of motion at 1 mm/min (each block under the hour) before a sample is made.
+  std::string slow = "G0 X200 Y0\n";
+  for (int k = 0; k < 24; ++k) slow += k % 2 == 0 ? "G1 X250 F1\n" : "G1 X200 F1\n";
+  write_text(dir / "slow.gcode", slow);
+  const CliResult day = run_cli("plan slow.gcode -o slow.csv", dir.path());
+  EXPECT_EQ(day.exit_code, 2);
+  // 24 moves of 50 mm at 1/60 mm/s: 72 000 s at cruise (the lower bound), each at most L/v + v/a + a/j.
+  const std::string head = "error: slow.gcode: the plan has ";
+  ASSERT_EQ(day.err.rfind(head, 0), 0u) << day.err;
+  const long samples = std::stol(day.err.substr(head.size()));
+  EXPECT_GE(samples, 144'000'001);
+  EXPECT_LE(samples, 144'000'001 + 24 * 2000 * (1.0 / 60 / 49033 + 0.005));
+  EXPECT_NE(day.err.find("(72000.0 s at 2000 Hz, about 17.3 GB of CSV), more than the cap of 20000000; raise it with --max-samples"),
+            std::string::npos)
+      << day.err;
+  EXPECT_FALSE(fs::exists(dir / "slow.csv"));
+}
+
+TEST(CliPlan, EveryNumericMotionFlagRefusesAbsurdValuesWithItsName) {
+  TempDir dir;
+  write_text(dir / "job.gcode", "G0 X200 Y0\nM3 S500\nG1 X210 F600\nM0\nG4 P0.1\n");
+  const char* flags[] = {"--accel", "--jerk", "--max-velocity-mm-s", "--rate", "--blend-tolerance-mm",
+                         "--junction-time-ms", "--s-max", "--program-stop", "--lookahead", "--max-samples",
+                         "--work-offset-mm", "--start-mm"};
+  const char* values[] = {"nan", "inf", "-inf", "0", "-1", "1e-300", "1e308"};
+  for (const char* flag : flags) {
+    for (const char* value : values) {
+      const bool pair = std::string(flag) == "--work-offset-mm" || std::string(flag) == "--start-mm";
+      const std::string arg = pair ? std::string(value) + ",0" : std::string(value);
+      const CliResult r = run_cli(std::string("plan job.gcode --json ") + flag + "=" + arg, dir.path());
+      SCOPED_TRACE(std::string(flag) + " " + arg);
+      ASSERT_NE(r.exit_code, 1) << r.err;
+      if (r.exit_code == 2) {
+        // A start or offset the reader accepts can still put the job outside the robot's workspace:
+        // then the refusal names the point instead of the flag.
+        const bool moved_out = pair && r.err.find("outside robot oc-gu's workspace") != std::string::npos;
+        EXPECT_TRUE(r.err.find(flag) != std::string::npos || moved_out) << r.err;
+        continue;
+      }
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+      const auto s = r.json();
+      for (const char* key : {"duration_s", "peak_velocity_m_s", "peak_acceleration_m_s2", "peak_jerk_m_s3", "laser_on_s"}) {
+        EXPECT_TRUE(std::isfinite(s[key].get<double>())) << key;
+      }
+      EXPECT_GE(s["samples"].get<int>(), 2);
+    }
+  }
+}
+
+TEST(CliPlan, RunTakesTheDialectFlagsAndPrintsTheWarnings) {
+  TempDir dir;
+  const fs::path marlin = fs::path(STIFFPATH_TEST_DATA_DIR) / "cam" / "marlin_laser.gcode";
+  const std::string job = "run '" + marlin.string() + "' --work-offset-mm 182.132,-40 ";
+  const CliResult ms = run_cli(job + "--dwell-p-units ms --json", dir.path());
+  ASSERT_EQ(ms.exit_code, 0) << ms.err;
+  EXPECT_EQ(ms.err, "warning: " + marlin.string() +
+                        ":5: M106/M107 (Marlin's fan output) are read as laser on/off, M106 S 0-255 as the power (5 lines, "
+                        "the first shown)\n");
+  // The dwell was read in milliseconds: in seconds alone it would last 500 s (CliPlanCam checks both).
+  EXPECT_LT(ms.json()["duration_s"].get<double>(), 20.0);
+  const CliResult strict = run_cli(job + "--strict -o joints.csv", dir.path());
+  EXPECT_EQ(strict.exit_code, 2);
+  const std::string e = "error: " + marlin.string();
+  EXPECT_EQ(strict.err, e + ":1:1: unexpected non-ASCII character\n" + e + ":5:1: M107: unsupported M code\n" + e +
+                            ":8:1: M106: unsupported M code\n" + e + ":12:1: M107: unsupported M code\n" + e +
+                            ":14:1: M106: unsupported M code\n" + e + ":17:1: M107: unsupported M code\n" + e +
+                            ":19:1: unexpected non-ASCII character\n");  // the BOM, the fan words, the end-of-file character
+  EXPECT_FALSE(fs::exists(dir / "joints.csv"));
 }
 
 }  // namespace

@@ -43,7 +43,7 @@ TEST(CliRun, YMotionMatchesAnIndependentComputation) {
 
   // The thesis's per-point fits at x2y1 … x2y5 (the y motion runs along x = 222.132 mm, the grid's
   // middle column, so eq. 4.12 reduces to linear interpolation in y between those five points).
-  const auto fits = compliance::fit_points(measurement::load_displacement_table("thesis").filter("OC"));
+  const auto fits = compliance::fit_points(measurement::load_displacement_table(measurement::thesis_dataset()).filter("OC"));
   std::vector<compliance::PointFit> column;
   for (const auto& f : fits) {
     if (std::abs(f.position.x() - 0.222132) < 1e-9) column.push_back(f);
@@ -132,10 +132,21 @@ TEST(CliRun, BinaryOutputHoldsTheSameCommands) {
 TEST(CliRun, LeavingTheWorkspaceFailsNamingTimeLineAndQuantityAndLeavesNoFile) {
   TempDir dir;
   write_text(dir / "far.gcode", "G21 G90\nG0 X222 Y0\nM3 S100\nG1 X296 F60000\nM5\n");
-  const CliResult r = run_cli("run far.gcode -o out.csv", dir.path());
+  // By default the job stops where it leaves the compliance model's measured region (x ≤ 272.132 mm) …
+  const CliResult outside = run_cli("run far.gcode -o out.csv", dir.path());
+  EXPECT_EQ(outside.exit_code, 2);
+  EXPECT_NE(outside.err.find("far.gcode:4: t = "), std::string::npos) << outside.err;
+  EXPECT_NE(outside.err.find("is more than 1 mm outside the compliance model's measured region x [172.132, 272.132] mm"),
+            std::string::npos)
+      << outside.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.csv"));
+  // … and when told to clamp, where the corrected target leaves the workspace.
+  const CliResult r = run_cli("run far.gcode --outside clamp -o out.csv", dir.path());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("far.gcode:4: t = "), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("not reachable"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("is not reachable: too close to the stretched-out singularity: the left arm would reach"),
+            std::string::npos)
+      << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "out.csv"));
   EXPECT_TRUE(std::filesystem::is_empty(dir.path()) || !std::filesystem::exists(dir / "out.csv"));
   for (const auto& e : std::filesystem::directory_iterator(dir.path())) {

@@ -97,7 +97,7 @@ TEST(CliExperiment, ReducedMatrixWritesOneRowPerRun) {
   std::ifstream in(dir.path() / "out" / "results.csv");
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(line.rfind("mechanism,build,cg,compensated,motion,acceleration_g", 0), 0U);
+  EXPECT_EQ(line.rfind("robot,rows,cg,compensated,motion,acceleration_g", 0), 0U);
   int rows = 0;
   double oc_off_5 = 0, oc_on_5 = 0, sc_off_5 = 0;
   while (std::getline(in, line)) {

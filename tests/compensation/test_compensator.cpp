@@ -13,8 +13,11 @@
 namespace stiffpath::compensation {
 namespace {
 
+// A built-in model that clamps outside its grid: these tests sample around the grid on purpose.
 std::shared_ptr<const compliance::Model> thesis(const std::string& name) {
-  return std::shared_ptr<const compliance::Model>(compliance::load_model(name).model.release());
+  auto loaded = compliance::load_model(name);
+  loaded.model->set_outside_policy(compliance::OutsidePolicy::clamp);
+  return std::shared_ptr<const compliance::Model>(loaded.model.release());
 }
 
 // A planar trajectory p(t) = c + A·(sin ωt, sin 2ωt) with its analytic derivatives.
@@ -34,7 +37,7 @@ TaskSample lissajous(double t) {
 // The step as first written (before the throughput work): three separate model calls, divisions
 // by h, Eigen's products and inverse, eq. 2.2 and J from the angles. The real-time step now shares work
 // between these; it must give the same commands up to rounding.
-JointCommand reference_step(const kinematics::MechanismSpec& spec, const compliance::Model& model, double k,
+JointCommand reference_step(const kinematics::Robot& spec, const compliance::Model& model, double k,
                             const TaskSample& s) {
   JointCommand c;
   const double m = spec.moving_mass_kg;
@@ -55,7 +58,7 @@ JointCommand reference_step(const kinematics::MechanismSpec& spec, const complia
   c.status = robot.check_reach(c.command_m) == kinematics::Reach::ok ? Status::ok : Status::unreachable;
   if (c.status != Status::ok) return c;
   const double phi = std::atan2(c.command_m.y(), c.command_m.x());                         // eq. 2.2
-  const double eta = std::acos(c.command_m.norm() / (2.0 * robot.link_length()));
+  const double eta = std::acos(c.command_m.norm() / (2.0 * robot.geometry().proximal_m[0]));
   c.q_rad = {phi + eta, phi - eta};
   const Mat2 J = robot.jacobian(c.q_rad);
   c.qd_rad_s = J.inverse() * pd;
@@ -68,7 +71,7 @@ TEST(Compensator, MatchesTheStraightforwardStepToRounding) {
   // for the bilinear, physical and extrapolating models and two gains.
   std::mt19937_64 rng(6);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  const auto spec = kinematics::load_mechanism("oc-gu");
+  const auto spec = kinematics::load_robot("oc-gu");
   auto extrapolating = compliance::load_model("thesis-oc");
   extrapolating.model->set_outside_policy(compliance::OutsidePolicy::extrapolate);
   const std::shared_ptr<const compliance::Model> models[] = {
@@ -101,7 +104,7 @@ TEST(Compensator, MatchesTheStraightforwardStepToRounding) {
 }
 
 TEST(Compensator, CommandedPoseLandsOnThePlanAfterThePredictedDeflection) {
-  const auto spec = kinematics::load_mechanism("oc-gu");
+  const auto spec = kinematics::load_robot("oc-gu");
   const Compensator comp(spec, thesis("thesis-oc"));
   const auto robot = spec.five_bar();
   double worst = 0.0, largest = 0.0;
@@ -117,7 +120,7 @@ TEST(Compensator, CommandedPoseLandsOnThePlanAfterThePredictedDeflection) {
 }
 
 TEST(Compensator, ZeroAccelerationGivesZeroCorrection) {
-  const auto spec = kinematics::load_mechanism("sc-gl");
+  const auto spec = kinematics::load_robot("sc-gl");
   const Compensator comp(spec, thesis("thesis-sc"));
   TaskSample s;
   s.position_m = {0.25, -0.06};
@@ -130,7 +133,7 @@ TEST(Compensator, ZeroAccelerationGivesZeroCorrection) {
 }
 
 TEST(Compensator, DAlembertForceIsMinusMassTimesAcceleration) {
-  const auto spec = kinematics::load_mechanism("oc-gl");
+  const auto spec = kinematics::load_robot("oc-gl");
   const Compensator comp(spec, thesis("thesis-oc"));
   TaskSample s;
   s.position_m = {0.222132, 0.0};
@@ -143,7 +146,7 @@ TEST(Compensator, DAlembertForceIsMinusMassTimesAcceleration) {
 }
 
 TEST(Compensator, GainZeroEqualsNoCompensationAndGainScales) {
-  const auto spec = kinematics::load_mechanism("oc-gu");
+  const auto spec = kinematics::load_robot("oc-gu");
   const auto model = thesis("thesis-oc");
   const Compensator off(spec, model, {1.0, false, true}), zero(spec, model, {0.0, true, true}),
       half(spec, model, {0.5, true, true}), full(spec, model);
@@ -170,7 +173,7 @@ TEST(Compensator, MirroredPathGivesMirroredCorrectionsOnASymmetricRobot) {
     }
   }
   const auto model = std::make_shared<compliance::GridModel>("bilinear", grid, nodes);
-  const Compensator comp(kinematics::load_mechanism("oc-gu"), model);
+  const Compensator comp(kinematics::load_robot("oc-gu"), model);
   for (double t = 0.0; t < 0.3; t += 0.005) {
     TaskSample s = lissajous(t);
     TaskSample m = s;
@@ -185,7 +188,7 @@ TEST(Compensator, MirroredPathGivesMirroredCorrectionsOnASymmetricRobot) {
 }
 
 TEST(Compensator, JointVelocityAndAccelerationMatchDifferencesOfTheCommands) {
-  const Compensator comp(kinematics::load_mechanism("sc-gu"), thesis("thesis-sc-physical"));
+  const Compensator comp(kinematics::load_robot("sc-gu"), thesis("thesis-sc-physical"));
   const double h = 1e-5;
   for (double t = 0.01; t < 0.3; t += 0.013) {
     const JointCommand before = comp.step(lissajous(t - h)), now = comp.step(lissajous(t)),
@@ -199,7 +202,7 @@ TEST(Compensator, JointVelocityAndAccelerationMatchDifferencesOfTheCommands) {
 }
 
 TEST(Compensator, RefusesUnreachableTargetsAndJointLimitViolationsWithoutNaN) {
-  const auto spec = kinematics::load_mechanism("oc-gu");
+  const auto spec = kinematics::load_robot("oc-gu");
   const Compensator comp(spec, thesis("thesis-oc"));
   TaskSample s;
   s.position_m = {0.299, 0.0};
@@ -217,20 +220,33 @@ TEST(Compensator, RefusesUnreachableTargetsAndJointLimitViolationsWithoutNaN) {
   EXPECT_TRUE(c.q_rad.allFinite() && c.target_m.allFinite() && c.command_m.allFinite());
 }
 
-TEST(Compensator, OutsideGridPolicyError) {
+TEST(Compensator, OutsideGridPolicyErrorRefusesBeyondTheMarginOnly) {
   auto loaded = compliance::load_model("thesis-oc");
-  loaded.model->set_outside_policy(compliance::OutsidePolicy::error);
-  const Compensator comp(kinematics::load_mechanism("oc-gu"), std::shared_ptr<const compliance::Model>(loaded.model.release()));
+  ASSERT_EQ(loaded.model->outside_policy(), compliance::OutsidePolicy::error);  // the default
+  const std::shared_ptr<const compliance::Model> model(loaded.model.release());
+  const Compensator comp(kinematics::load_robot("oc-gu"), model);
   TaskSample s;
-  s.position_m = {0.150, 0.0};
   s.acceleration_m_s2 = {10.0, 0.0};
+  s.position_m = {0.150, 0.0};  // 22 mm left of the grid
   EXPECT_EQ(comp.step(s).status, Status::outside_grid);
   s.position_m = {0.200, 0.0};
   EXPECT_EQ(comp.step(s).status, Status::ok);
+  // The grid's edge y = 75 mm: 0.9 mm beyond it is clamped and counted, 1.1 mm beyond it refused.
+  ASSERT_EQ(compliance::kOutsideMargin_m, 1e-3);
+  s.position_m = {0.222132, 0.0759};
+  JointCommand c = comp.step(s);
+  EXPECT_EQ(c.status, Status::ok);
+  EXPECT_TRUE(c.outside_grid);
+  EXPECT_EQ(c.deflection_m, model->compliance({0.222132, 0.075}) * c.force_N);
+  s.position_m = {0.222132, 0.0761};
+  EXPECT_EQ(comp.step(s).status, Status::outside_grid);
+  // Without compensation nothing is refused for the model's sake.
+  const Compensator off(kinematics::load_robot("oc-gu"), model, {1.0, false, true});
+  EXPECT_EQ(off.step(s).status, Status::ok);
 }
 
 TEST(Compensator, RejectsBadGain) {
-  const auto spec = kinematics::load_mechanism("oc-gu");
+  const auto spec = kinematics::load_robot("oc-gu");
   EXPECT_THROW(Compensator(spec, thesis("thesis-oc"), {-1.0, true, true}), Error);
   EXPECT_THROW(Compensator(spec, thesis("thesis-oc"), {std::nan(""), true, true}), Error);
   EXPECT_THROW(Compensator(spec, nullptr), Error);

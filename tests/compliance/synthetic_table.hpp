@@ -19,7 +19,7 @@ inline measurement::DisplacementTable synthetic_table(const std::function<Mat2(c
                                                       const std::function<Vec2(const Vec2&)>& offset,
                                                       double noise_m = 0.0, unsigned seed = 1,
                                                       const std::string& mechanism = "OC") {
-  measurement::DisplacementTable table{"synthetic.csv", {}};
+  measurement::DisplacementTable table{"synthetic.csv", {}, {}};
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> noise(0.0, noise_m > 0 ? noise_m : 1.0);
   const double kgf[5] = {5.0, 9.92, 14.89, 19.83, 24.86};

@@ -16,12 +16,13 @@ namespace stiffpath::compliance {
 namespace {
 
 constexpr double kL = 0.150;
+const kinematics::FiveBarGeometry kThesis = kinematics::FiveBarGeometry::thesis(kL);
 const GridBounds kGrid{0.172132, 0.272132, -0.075, 0.075};
 
 // A physical model with known D coefficients (µm/N), order 1.
 std::unique_ptr<PhysicalModel> known_physical() {
   return std::make_unique<PhysicalModel>(
-      kL, kGrid, 1, std::vector<std::array<double, 3>>{{1.5e-6, 0.1e-6, 1.2e-6}, {0.3e-6, 0.0, -0.2e-6}, {0.0, 0.05e-6, 0.1e-6}},
+      kThesis, kGrid, 1, std::vector<std::array<double, 3>>{{1.5e-6, 0.1e-6, 1.2e-6}, {0.3e-6, 0.0, -0.2e-6}, {0.0, 0.05e-6, 0.1e-6}},
       nlohmann::json::object());
 }
 
@@ -31,7 +32,7 @@ TEST(PhysicalModel, LinkForceMapSplitsTheForceIntoTheDistalLinks) {
   const double r = p.norm(), phi = std::atan2(p.y(), p.x()), eta = std::acos(r / (2 * kL));
   const Vec2 w1{std::cos(phi + eta), std::sin(phi + eta)}, w2{std::cos(phi - eta), std::sin(phi - eta)};
   const Vec2 F{120.0, -75.0};
-  const Vec2 f = PhysicalModel::link_force_map(kL, p) * F;
+  const Vec2 f = PhysicalModel::link_force_map(kThesis, p) * F;
   EXPECT_LT((f.x() * w2 + f.y() * w1 - F).norm(), 1e-12);
 }
 
@@ -44,7 +45,7 @@ TEST(PhysicalModel, ActuatorComplianceEqualsJacobianMapping) {
   Mat2 J;
   J << -kL * std::sin(t1), -kL * std::sin(t2), kL * std::cos(t1), kL * std::cos(t2);
   const Mat2 vjm = J * Vec2(k1, k2).asDiagonal() * J.transpose();
-  const Mat2 U_inv = PhysicalModel::link_force_map(kL, p);
+  const Mat2 U_inv = PhysicalModel::link_force_map(kThesis, p);
   const Mat2 D = Vec2(k1 * kL * kL * s2, k2 * kL * kL * s2).asDiagonal();
   EXPECT_LT((U_inv.transpose() * D * U_inv - vjm).norm(), 1e-15);
 }
@@ -53,7 +54,7 @@ TEST(PhysicalModel, FitRecoversKnownCoefficientsFromNoiselessData) {
   const auto truth = known_physical();
   const auto table = test::synthetic_table([&](const Vec2& p) { return truth->compliance(p); },
                                            [](const Vec2&) { return Vec2::Zero(); });
-  const auto fitted = fit_physical_model(group_by_point(table, ForceConvention::measured), kL, 1, table.source);
+  const auto fitted = fit_physical_model(group_by_point(table, ForceConvention::measured), kThesis, 1, table.source);
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> ux(0.16, 0.28), uy(-0.09, 0.09);
   fitted->set_outside_policy(OutsidePolicy::extrapolate);
@@ -117,7 +118,7 @@ TEST(CrossValidation, PhysicalModelIsExactOnDataItCanRepresent) {
   truth->set_outside_policy(OutsidePolicy::extrapolate);
   const auto table = test::synthetic_table([&](const Vec2& p) { return truth->compliance(p); },
                                            [](const Vec2&) { return Vec2::Zero(); });
-  const CvReport report = cross_validate(group_by_point(table, ForceConvention::measured), kL, table.source);
+  const CvReport report = cross_validate(group_by_point(table, ForceConvention::measured), kThesis, table.source);
   ASSERT_EQ(report.methods.size(), 5u);
   const CvMethod& physical = report.methods[3];
   EXPECT_EQ(physical.method, "physical");
@@ -139,7 +140,7 @@ TEST(CrossValidation, BilinearIsExactOnABilinearField) {
         return Mat2(c * 1e-6);
       },
       [](const Vec2&) { return Vec2::Zero(); });
-  const CvReport report = cross_validate(group_by_point(table, ForceConvention::measured), kL, table.source);
+  const CvReport report = cross_validate(group_by_point(table, ForceConvention::measured), kThesis, table.source);
   EXPECT_LT(report.methods[0].max_um, 1e-6);
 }
 
@@ -182,15 +183,17 @@ TEST(ModelFile, RoundTripsEveryMethod) {
                                            [](const Vec2& p) { return Vec2(p.y() * 1e-4, 2e-6); }, 1e-6, 9);
   test::TempDir dir;
   for (const std::string method : {"bilinear", "symmetric", "physical", "physical-2"}) {
-    auto fitted = fit_model(table, "OC", method);
+    auto fitted = fit_model(table, "OC", method, ForceConvention::measured, kinematics::load_robot("oc-gu"));
     fitted.model->set_outside_policy(OutsidePolicy::extrapolate);
     fitted.model->set_zero_force(ZeroForce::thesis_raw);
     const auto path = (dir / (method + ".json")).string();
     save_model(path, *fitted.model, fitted.provenance);
-    const LoadedModel back = load_model_file(path);
+    const LoadedModel back = load_model_file(core::DataRef{path, false});
     EXPECT_EQ(back.model->outside_policy(), OutsidePolicy::extrapolate);
     EXPECT_EQ(back.model->zero_force(), ZeroForce::thesis_raw);
-    EXPECT_EQ(back.provenance.mechanism, "OC");
+    EXPECT_EQ(back.provenance.rows, "OC");
+    ASSERT_TRUE(back.provenance.geometry.has_value());
+    EXPECT_EQ(kinematics::geometry_hash(*back.provenance.geometry), kinematics::load_robot("oc-gu").geometry_hash());
     for (const Vec2& p : {Vec2(0.2, 0.01), Vec2(0.26, -0.07), Vec2(0.28, 0.085)}) {  // the last one off the grid
       const Vec2 F{150.0, -90.0};
       EXPECT_LT((back.model->predict(p, F) - fitted.model->predict(p, F)).norm(), 1e-12) << method;
@@ -198,11 +201,16 @@ TEST(ModelFile, RoundTripsEveryMethod) {
   }
 }
 
+// The error of loading `doc` written as m.json, with its "m.json:line:column: " prefix checked and removed.
 std::string load_error(const nlohmann::json& doc) {
   try {
-    (void)model_from_json(doc, "m.json");
+    (void)model_from_json(core::parse_json_document(doc.dump(2), "m.json"));
   } catch (const Error& e) {
-    return e.what();
+    const std::string what = e.what();
+    EXPECT_EQ(e.where().file, "m.json");
+    EXPECT_GT(e.where().line, 0) << what;
+    EXPECT_EQ(what.rfind(e.where().str() + ": ", 0), 0U) << what;
+    return e.message();
   }
   return "";
 }
@@ -210,38 +218,47 @@ std::string load_error(const nlohmann::json& doc) {
 TEST(ModelFile, BadFieldsAreNamed) {
   const auto table = test::synthetic_table([](const Vec2&) { return Mat2(Mat2::Identity() * 1e-6); },
                                            [](const Vec2&) { return Vec2::Zero(); });
-  const auto fitted = fit_model(table, "OC", "bilinear");
+  const auto fitted = fit_model(table, "OC", "bilinear", ForceConvention::measured, kinematics::load_robot("oc-gu"));
   const nlohmann::json good = model_to_json(*fitted.model, fitted.provenance);
   auto bad = good;
   bad["nodes"][3]["C_um_per_N"] = {{1, 2}, {3}};
-  EXPECT_EQ(load_error(bad), "m.json.nodes[3].C_um_per_N: must be a 2x2 array [[a, b], [c, d]]");
+  EXPECT_EQ(load_error(bad), "nodes[3].C_um_per_N: must be a 2x2 array [[a, b], [c, d]]");
   bad = good;
   bad["method"] = "spline";
-  EXPECT_EQ(load_error(bad), "m.json.method: 'spline' is not one of bilinear, symmetric, physical");
+  EXPECT_EQ(load_error(bad), "method: 'spline' is not one of bilinear, symmetric, physical");
   bad = good;
   bad["grid"]["x_mm"] = {1, 1, 2};
-  EXPECT_EQ(load_error(bad), "m.json.grid.x_mm: must list at least two strictly increasing values");
+  EXPECT_EQ(load_error(bad), "grid.x_mm: must list at least two strictly increasing values");
   bad = good;
   bad.erase("provenance");
-  EXPECT_EQ(load_error(bad), "m.json.provenance: missing field");
+  try {
+    (void)model_from_json(core::parse_json_document(bad.dump(2), "m.json"));
+    ADD_FAILURE();
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), "m.json: provenance: missing field");  // no line: the field is not there
+  }
+  bad = good;
+  bad["robot"]["geometry"]["left_distal_mm"] = 151.0;
+  EXPECT_EQ(load_error(bad), "robot.geometry_sha256: does not match the geometry recorded beside it (was the file edited?)");
   bad = good;
   bad["outside_policy"] = "wrap";
   EXPECT_NE(load_error(bad).find("outside-grid policy 'wrap'"), std::string::npos);
-  const auto physical = fit_model(table, "OC", "physical");
+  const auto physical = fit_model(table, "OC", "physical", ForceConvention::measured, kinematics::load_robot("oc-gu"));
   bad = model_to_json(*physical.model, physical.provenance);
   bad["D_um_per_N"].erase(2);
-  EXPECT_EQ(load_error(bad), "m.json.D_um_per_N: order 1 needs 3 entries, got 2");
+  EXPECT_EQ(load_error(bad), "D_um_per_N: order 1 needs 3 entries, got 2");
 }
 
 TEST(ModelFactory, UnknownMethodAndMechanismAreNamed) {
   const auto table = test::synthetic_table([](const Vec2&) { return Mat2(Mat2::Identity() * 1e-6); },
                                            [](const Vec2&) { return Vec2::Zero(); });
-  EXPECT_THROW((void)fit_model(table, "OC", "kriging"), Error);
+  const auto robot = kinematics::load_robot("oc-gu");
+  EXPECT_THROW((void)fit_model(table, "OC", "kriging", ForceConvention::measured, robot), Error);
   try {
-    (void)fit_model(table, "SC", "bilinear");
+    (void)fit_model(table, "SC", "bilinear", ForceConvention::measured, robot);
     FAIL();
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("no rows for mechanism 'SC' (the table has: OC)"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("no rows with mechanism 'SC' (the table has: OC)"), std::string::npos);
   }
 }
 

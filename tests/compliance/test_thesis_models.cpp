@@ -32,7 +32,7 @@ LineFit by_hand(const std::vector<double>& kgf, const std::vector<double>& d_mm,
 }
 
 TEST(ThesisFits, MatchHandComputedLeastSquares) {
-  const auto table = measurement::load_displacement_table("thesis").filter("OC");
+  const auto table = measurement::load_displacement_table(measurement::thesis_dataset()).filter("OC");
   const auto fits = fit_points(table);
   // OC x1y3, +x (table 2.2): step 1's Δx is garbled ("27"), so steps 2-5: 0.059, 0.094, 0.129, 0.164 mm.
   const LineFit m = by_hand({9.92, 14.89, 19.83, 24.86}, {0.059, 0.094, 0.129, 0.164}, +1.0);
@@ -50,8 +50,8 @@ TEST(ThesisFits, MatchHandComputedLeastSquares) {
 }
 
 TEST(ThesisCrossValidation, OcMeetsTheTargetsAndBeatsBilinear) {
-  const auto table = measurement::load_displacement_table("thesis").filter("OC");
-  const CvReport r = cross_validate(group_by_point(table, ForceConvention::measured), 0.150, "thesis");
+  const auto table = measurement::load_displacement_table(measurement::thesis_dataset()).filter("OC");
+  const CvReport r = cross_validate(group_by_point(table, ForceConvention::measured), kinematics::FiveBarGeometry::thesis(0.150), "thesis");
   const CvMethod& bilinear = r.methods[0];
   const CvMethod& physical = r.methods[3];
   ASSERT_EQ(bilinear.method, "bilinear");
@@ -65,16 +65,16 @@ TEST(ThesisCrossValidation, OcMeetsTheTargetsAndBeatsBilinear) {
 }
 
 TEST(ThesisCrossValidation, ScPhysicalBeatsBilinearToo) {
-  const auto table = measurement::load_displacement_table("thesis").filter("SC");
-  const CvReport r = cross_validate(group_by_point(table, ForceConvention::measured), 0.150, "thesis");
+  const auto table = measurement::load_displacement_table(measurement::thesis_dataset()).filter("SC");
+  const CvReport r = cross_validate(group_by_point(table, ForceConvention::measured), kinematics::FiveBarGeometry::thesis(0.150), "thesis");
   EXPECT_LT(r.methods[3].interior_mean_um, 0.5 * r.methods[0].interior_mean_um);
 }
 
 TEST(ThesisModels, SymmetricAndPhysicalArePositiveDefiniteOverTheWorkspace) {
   for (const std::string build : {"OC", "SC"}) {
-    const auto table = measurement::load_displacement_table("thesis");
+    const auto table = measurement::load_displacement_table(measurement::thesis_dataset());
     for (const std::string method : {"symmetric", "physical"}) {
-      const auto m = fit_model(table, build, method);
+      const auto m = fit_model(table, build, method, ForceConvention::measured, kinematics::load_robot("oc-gu"));
       for (double x = 0.172132; x <= 0.272133; x += 0.005) {
         for (double y = -0.075; y <= 0.0750001; y += 0.005) {
           const Mat2 c = m.model->compliance({x, y});
@@ -90,7 +90,8 @@ TEST(ThesisModels, SymmetricAndPhysicalArePositiveDefiniteOverTheWorkspace) {
 TEST(ThesisModels, BuiltInModelsAreTheThesisBilinearFits) {
   const auto oc = load_model("thesis-oc");
   EXPECT_EQ(oc.model->method(), "bilinear");
-  EXPECT_EQ(oc.provenance.mechanism, "OC");
+  EXPECT_EQ(oc.provenance.rows, "OC");
+  EXPECT_EQ(oc.provenance.robot, "oc-gu");
   EXPECT_EQ(oc.provenance.sha256.size(), 64u);
   // At x3y5 the y compliance is the −y table's slope: ≈ 6.9 µm/N.
   EXPECT_NEAR(oc.model->compliance({0.272132, 0.075})(1, 1) * 1e6, 6.9, 0.1);
@@ -100,7 +101,7 @@ TEST(ThesisModels, BuiltInModelsAreTheThesisBilinearFits) {
 }
 
 TEST(ThesisModels, ToolPointLeverFollowsTheAngularDeflections) {
-  const auto table = measurement::load_displacement_table("thesis").filter("OC");
+  const auto table = measurement::load_displacement_table(measurement::thesis_dataset()).filter("OC");
   const auto fits = fit_points(table);
   std::shared_ptr<const GridModel> angular = make_angular_model(fits, "thesis");
   std::shared_ptr<const Model> at_G = make_bilinear_model(fits, "thesis");

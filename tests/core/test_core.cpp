@@ -108,10 +108,10 @@ TEST(Units, AccelerationParsing) {
 }
 
 TEST(Embedded, PresetsAreBuiltIn) {
-  const auto text = find_embedded("mechanisms/oc-gu.json");
+  const auto text = find_embedded("robots/oc-gu.json");
   ASSERT_TRUE(text.has_value());
   EXPECT_NE(text->find("\"oc-gu\""), std::string_view::npos);
-  EXPECT_FALSE(find_embedded("mechanisms/none.json").has_value());
+  EXPECT_FALSE(find_embedded("robots/none.json").has_value());
 }
 
 }  // namespace

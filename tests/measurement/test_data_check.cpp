@@ -127,7 +127,7 @@ TEST(DataCheck, NominalForcesScaleTheSlopes) {
 }
 
 TEST(DataCheck, ThesisDataSet) {
-  const auto rep = check_displacements(load_displacement_table("thesis"));
+  const auto rep = check_displacements(load_displacement_table(measurement::thesis_dataset()));
   // Table 3.4's odd cell (OC +x x3y5 rx = 0.023° at 150 N) breaks linearity beyond 2·23 µm/160 mm.
   bool found = false;
   for (const auto& l : rep.linearity) {

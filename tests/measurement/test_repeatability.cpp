@@ -19,7 +19,7 @@ const PoseStatistics& find(const RepeatabilityReport& r, const std::string& mech
 }
 
 TEST(Repeatability, ThesisTable32) {
-  const auto report = analyse_repeatability(load_trials("thesis"));
+  const auto report = analyse_repeatability(load_trials(thesis_repeatability()));
   ASSERT_EQ(report.points.size(), 9U);  // OC only: table 3.3 (SC) is missing
   ASSERT_EQ(report.missing.size(), 9U);
   EXPECT_NE(report.missing[0].find("SC x1y1: 0 complete trial(s) of 3"), std::string::npos) << report.missing[0];

@@ -39,8 +39,8 @@ void expect_deg(const std::optional<double>& v, double deg) {
 }
 
 TEST(ThesisDataset, HasEveryMechanismDirectionPointAndStep) {
-  const auto t = load_displacement_table("thesis");
-  EXPECT_EQ(t.source, "thesis");
+  const auto t = load_displacement_table(measurement::thesis_dataset());
+  EXPECT_EQ(t.source, "builtin:thesis/displacements.csv");
   ASSERT_EQ(t.rows.size(), 300U);
   EXPECT_EQ(t.mechanisms(), (std::vector<std::string>{"OC", "SC"}));
   std::set<std::string> points;
@@ -61,7 +61,7 @@ TEST(ThesisDataset, HasEveryMechanismDirectionPointAndStep) {
 }
 
 TEST(ThesisDataset, ForcesFollowTable21) {
-  const auto t = load_displacement_table("thesis");
+  const auto t = load_displacement_table(measurement::thesis_dataset());
   const double kgf[] = {5.0, 9.92, 14.89, 19.83, 24.86};
   for (int s = 1; s <= 5; ++s) {
     const auto& r = find(t, "SC", ForceDirection::minus_y, "x2y3", s);
@@ -71,7 +71,7 @@ TEST(ThesisDataset, ForcesFollowTable21) {
 }
 
 TEST(ThesisDataset, MissingCellsAreExactlyTheGarbledOnes) {
-  const auto t = load_displacement_table("thesis");
+  const auto t = load_displacement_table(measurement::thesis_dataset());
   int missing_disp = 0, missing_angle = 0;
   for (const auto& r : t.rows) {
     missing_disp += !r.dx_m + !r.dy_m + !r.dz_m;
@@ -94,7 +94,7 @@ TEST(ThesisDataset, MissingCellsAreExactlyTheGarbledOnes) {
 
 // Cells read off the seed by eye (table, row, column noted next to each).
 TEST(ThesisDataset, SampleCellsMatchTheSeed) {
-  const auto t = load_displacement_table("thesis");
+  const auto t = load_displacement_table(measurement::thesis_dataset());
   using D = ForceDirection;
   const auto& t22 = find(t, "OC", D::plus_x, "x1y2", 1);  // table 2.2, 50 N, x1y2
   expect_mm(t22.dx_m, 0.035);
@@ -120,7 +120,7 @@ TEST(ThesisDataset, SampleCellsMatchTheSeed) {
 // §3.3: "at x1y1 the total absolute compliant displacement for the over-constrained mechanism is
 // 0.55 mm under the forces in x-direction ... at x3y5 [under −y] 1.73 mm to 3.33 mm".
 TEST(ThesisDataset, TotalsQuotedInTheTextHold) {
-  const auto t = load_displacement_table("thesis");
+  const auto t = load_displacement_table(measurement::thesis_dataset());
   EXPECT_NEAR(total_mm(find(t, "OC", ForceDirection::plus_x, "x1y1", 5)), 0.55, 0.005);
   EXPECT_NEAR(total_mm(find(t, "OC", ForceDirection::minus_y, "x3y5", 5)), 1.73, 0.005);
   EXPECT_NEAR(total_mm(find(t, "SC", ForceDirection::minus_y, "x3y5", 5)), 3.33, 0.005);
@@ -128,7 +128,7 @@ TEST(ThesisDataset, TotalsQuotedInTheTextHold) {
 
 // The text's 1.53 mm for SC x1y1 (+x, 250 N) contradicts table 3.8: it is the sum of squares.
 TEST(ThesisDataset, TheQuoted153mmIsTheSumOfSquaresNotTheNorm) {
-  const auto t = load_displacement_table("thesis");
+  const auto t = load_displacement_table(measurement::thesis_dataset());
   const auto& r = find(t, "SC", ForceDirection::plus_x, "x1y1", 5);
   EXPECT_NEAR(total_mm(r), 1.236, 0.0005);
   EXPECT_GT(std::abs(total_mm(r) - 1.53), 0.25);
@@ -137,7 +137,7 @@ TEST(ThesisDataset, TheQuoted153mmIsTheSumOfSquaresNotTheNorm) {
 
 // §2.5: symmetric structure → no Δy on the x axis under +x (within the CMM's ±23 µm).
 TEST(ThesisDataset, OcHasNoLateralDisplacementOnTheAxis) {
-  const auto t = load_displacement_table("thesis").filter("OC");
+  const auto t = load_displacement_table(measurement::thesis_dataset()).filter("OC");
   int checked = 0;
   for (const auto& r : t.rows) {
     if (r.direction == ForceDirection::plus_x && r.point.ends_with("y3") && r.dy_m) {

@@ -12,7 +12,7 @@
 namespace stiffpath::measurement {
 namespace {
 
-DisplacementTable oc_truth() { return linear_truth(load_displacement_table("thesis").filter("OC")); }
+DisplacementTable oc_truth() { return linear_truth(load_displacement_table(measurement::thesis_dataset()).filter("OC")); }
 
 struct Stats {
   double mean = 0.0, sd = 0.0;
@@ -77,7 +77,7 @@ TEST(VirtualCampaign, NoiseFreeRoundTripIsExact) {
 // With the arm's noise, the recovered displacement errors divided by their predicted σ must look like
 // N(0, 1): σ_G = σ·√((1 − r)² + r²) (eq. 2.3, r = 69/160), σ_d = σ_G·√(1/n_k + 1/n_0).
 TEST(VirtualCampaign, NoisyRoundTripMatchesTheNoiseStatistics) {
-  const auto thesis = load_displacement_table("thesis");
+  const auto thesis = load_displacement_table(measurement::thesis_dataset());
   for (int readings : {1, 4}) {
     const double r = 69.0 / 160.0, n = readings;
     const double sigma = VirtualCampaignOptions{}.noise_sigma_m;
@@ -140,18 +140,18 @@ TEST(VirtualCampaign, SameSeedSameReadingsAndFileRoundTrip) {
 }
 
 TEST(VirtualCampaign, RejectsIncompleteTruthAndBadOptions) {
-  const auto thesis = load_displacement_table("thesis").filter("OC");
+  const auto thesis = load_displacement_table(measurement::thesis_dataset()).filter("OC");
   try {
     simulate_campaign(thesis, {});
     FAIL() << "expected an error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("thesis:3: "), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("builtin:thesis/displacements.csv:3: "), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("column 'dx_mm'"), std::string::npos) << e.what();
   }
   VirtualCampaignOptions o;
   o.readings_per_step = 0;
   EXPECT_THROW(simulate_campaign(oc_truth(), o), Error);
-  EXPECT_THROW(simulate_campaign(linear_truth(load_displacement_table("thesis")), {}), Error);  // two mechanisms
+  EXPECT_THROW(simulate_campaign(linear_truth(load_displacement_table(measurement::thesis_dataset())), {}), Error);  // two mechanisms
 }
 
 }  // namespace

@@ -24,7 +24,8 @@ TEST(Gcode, ThesisXMotionInTheRobotFrame) {
   EXPECT_NEAR(s.length_m, 0.1, 1e-15);
   EXPECT_DOUBLE_EQ(s.feed_m_s, 0.1);  // 6000 mm/min
   EXPECT_TRUE(s.laser_on);
-  EXPECT_EQ(s.laser_power, 1000.0);
+  EXPECT_EQ(s.power, 1.0);  // S1000 of the default full scale 1000
+  EXPECT_FALSE(s.dynamic_power);
   EXPECT_EQ(s.line, 4);
   EXPECT_FALSE(s.rapid);
   EXPECT_EQ(s.mode, JunctionMode::exact_stop);
@@ -112,7 +113,8 @@ TEST(Gcode, DwellPathModesAndLaserStates) {
   EXPECT_FALSE(segs[3].laser_on);            // S0
   EXPECT_FALSE(segs[4].laser_on);            // M5
   EXPECT_TRUE(segs[5].laser_on);             // M4 with S10
-  EXPECT_EQ(segs[5].laser_power, 10.0);
+  EXPECT_DOUBLE_EQ(segs[5].power, 0.01);  // S10 of 1000
+  EXPECT_TRUE(segs[5].dynamic_power);
 }
 
 TEST(Gcode, G64WithoutPUsesTheConfiguredTolerance) {

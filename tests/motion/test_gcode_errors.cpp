@@ -1,10 +1,11 @@
-// The corpus of malformed programs (tests/data/gcode_bad/): each file's first line says the error it must raise.
+// The corpus of malformed programs (tests/data/gcode_bad/): each file's header says the refusals it must raise.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "gcode_corpus.hpp"
 #include "stiffpath/motion/gcode_reader.hpp"
 
 namespace stiffpath::motion {
@@ -12,34 +13,24 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string first_line(const fs::path& path) {
-  std::ifstream in(path);
-  std::string line;
-  std::getline(in, line);
-  return line;
-}
-
-TEST(GcodeErrors, EveryMalformedProgramRaisesItsExpectedMessage) {
-  const fs::path dir = fs::path(STIFFPATH_TEST_DATA_DIR) / "gcode_bad";
-  int checked = 0;
-  for (const auto& entry : fs::directory_iterator(dir)) {
-    if (entry.path().extension() != ".gcode") continue;
-    const std::string header = first_line(entry.path());
-    const std::string prefix = "; expect: ";
-    ASSERT_EQ(header.rfind(prefix, 0), 0u) << entry.path() << " lacks its '; expect: ' line";
-    const std::string expected = entry.path().string() + ":" + header.substr(prefix.size());
+TEST(GcodeErrors, EveryMalformedProgramRaisesItsExpectedMessages) {
+  const auto cases = test::read_corpus(fs::path(STIFFPATH_TEST_DATA_DIR) / "gcode_bad");
+  for (const auto& c : cases) {
+    ASSERT_FALSE(c.expected.empty()) << c.path << " lacks its '; expect: ' lines";
+    std::string expected;
+    for (const auto& line : c.expected) expected += (expected.empty() ? "" : "\n") + line;
     std::string actual = "(no error)";
     try {
-      GcodeReader reader(entry.path());
+      GcodeReader reader(c.path, c.options);
       while (reader.next()) {
       }
-    } catch (const Error& e) {
+    } catch (const GcodeErrors& e) {
       actual = e.what();
+      EXPECT_EQ(e.errors().size() + (e.omitted() > 0 ? 1 : 0), c.expected.size()) << c.path.filename();
     }
-    EXPECT_EQ(actual, expected) << entry.path().filename();
-    ++checked;
+    EXPECT_EQ(actual, expected) << c.path.filename();
   }
-  EXPECT_GE(checked, 30);
+  EXPECT_GE(cases.size(), 50u);
 }
 
 TEST(GcodeErrors, MissingFileAndDirectoryAreNamed) {

@@ -7,7 +7,7 @@
 #include <random>
 
 #include "stiffpath/core/error.hpp"
-#include "stiffpath/kinematics/mechanism_spec.hpp"
+#include "stiffpath/kinematics/robot.hpp"
 #include "stiffpath/simulation/plant.hpp"
 #include "stiffpath/simulation/twin_models.hpp"
 
@@ -15,8 +15,8 @@ namespace stiffpath::simulation {
 namespace {
 
 struct Fixture {
-  kinematics::MechanismSpec spec = kinematics::load_mechanism("oc-gu");
-  std::shared_ptr<const compliance::Model> truth = make_true_compliance("OC");
+  kinematics::Robot spec = kinematics::load_robot("oc-gu");
+  std::shared_ptr<const compliance::Model> truth = make_true_compliance(kinematics::load_robot("oc-gu"));
   Plant plant(PlantOptions o = {}) const { return Plant(spec.five_bar(), truth, spec.moving_mass_kg, o); }
   Vec2 q_at(const Vec2& p) const { return spec.five_bar().inverse(p); }
 };

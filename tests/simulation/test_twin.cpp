@@ -14,10 +14,11 @@ namespace {
 // At every grid point the bilinear model is the per-point fit (eq. 4.8) of noisy readings, so its slopes
 // differ from C_true by the noise's regression error only: |ΔC| ≲ 3·σ_slope, σ_slope = σ_d/√(Σ F²).
 TEST(Twin, CampaignFitRecoversTruthAtGridPoints) {
-  for (const char* build : {"OC", "SC"}) {
-    const auto truth = make_true_compliance(build);
-    const auto table = virtual_campaign_table(*truth, build);
-    const auto model = fit_compensation_model(*truth, build);
+  for (const char* build : {"oc-gu", "sc-gu"}) {
+    const auto robot = kinematics::load_robot(build);
+    const auto truth = make_true_compliance(robot);
+    const auto table = virtual_campaign_table(*truth, robot);
+    const auto model = fit_compensation_model(*truth, robot);
     const auto fits = compliance::fit_points(table);
     ASSERT_EQ(fits.size(), 15U);
     double sum_f2 = 0;  // Σ F² of one series (5 steps of ~50 N)
@@ -51,8 +52,9 @@ TEST(Twin, CampaignFitRecoversTruthAtGridPoints) {
 }
 
 TEST(Twin, TrueComplianceIsSymmetricPositiveDefiniteAndPerturbed) {
-  const auto base = make_true_compliance("OC", {"", 0.0, 1});
-  const auto truth = make_true_compliance("OC");
+  const auto oc = kinematics::load_robot("oc-gu");
+  const auto base = make_true_compliance(oc, {"", 0.0, 1});
+  const auto truth = make_true_compliance(oc);
   double max_rel = 0;
   for (double x = 0.172132; x <= 0.2722; x += 0.025) {
     for (double y = -0.075; y <= 0.0751; y += 0.0375) {
@@ -65,15 +67,18 @@ TEST(Twin, TrueComplianceIsSymmetricPositiveDefiniteAndPerturbed) {
   }
   EXPECT_GT(max_rel, 0.01);
   EXPECT_LE(max_rel, 0.10 + 1e-12);
-  EXPECT_THROW(make_true_compliance("XX"), Error);
-  EXPECT_THROW(make_true_compliance("OC", {"", 0.9, 1}), Error);
+  kinematics::Robot no_data = oc;
+  no_data.compliance = {};
+  EXPECT_THROW(make_true_compliance(no_data), Error);
+  EXPECT_THROW(make_true_compliance(oc, {"", 0.9, 1}), Error);
 }
 
 // The acceptance check: y motion at 5 g on OC G_U.
 TEST(Twin, CompensationRemovesMostOfTheYMotionErrorAt5g) {
-  const TwinModels models = make_twin_models("OC");
-  const RunResult off = run_once({"oc-gu", "y", 5.0, false}, models);
-  const RunResult on = run_once({"oc-gu", "y", 5.0, true}, models);
+  const auto oc = kinematics::load_robot("oc-gu");
+  const TwinModels models = make_twin_models(oc);
+  const RunResult off = run_once({"oc-gu", "y", 5.0, false}, oc, models);
+  const RunResult on = run_once({"oc-gu", "y", 5.0, true}, oc, models);
   const auto& a = off.metrics;
   const auto& b = on.metrics;
   EXPECT_NEAR(a.commanded_length_m, 0.150, 1e-6);
@@ -92,12 +97,13 @@ TEST(Twin, CompensationRemovesMostOfTheYMotionErrorAt5g) {
 // with the acceleration; SC deflects more than OC. (The length error itself is not monotonic between 3 and
 // 5 g: the overshoot at the end depends on how the 5 ms jerk ramp compares with the tip's period.)
 TEST(Twin, UncompensatedErrorGrowsWithAccelerationAndScIsWorse) {
-  const TwinModels oc = make_twin_models("OC"), sc = make_twin_models("SC");
-  const double e1 = run_once({"oc-gu", "y", 1.0, false}, oc).metrics.length_error_m;
-  const RunResult oc3 = run_once({"oc-gu", "y", 3.0, false}, oc);
+  const auto oc_robot = kinematics::load_robot("oc-gu"), sc_robot = kinematics::load_robot("sc-gu");
+  const TwinModels oc = make_twin_models(oc_robot), sc = make_twin_models(sc_robot);
+  const double e1 = run_once({"oc-gu", "y", 1.0, false}, oc_robot, oc).metrics.length_error_m;
+  const RunResult oc3 = run_once({"oc-gu", "y", 3.0, false}, oc_robot, oc);
   const double e3 = oc3.metrics.length_error_m;
-  const RunResult oc5 = run_once({"oc-gu", "y", 5.0, false}, oc);
-  const RunResult sc5 = run_once({"sc-gu", "y", 5.0, false}, sc);
+  const RunResult oc5 = run_once({"oc-gu", "y", 5.0, false}, oc_robot, oc);
+  const RunResult sc5 = run_once({"sc-gu", "y", 5.0, false}, sc_robot, sc);
   EXPECT_LT(e1, e3);
   EXPECT_LT(e1, oc5.metrics.length_error_m);
   EXPECT_LT(oc3.metrics.peak_deflection_m, oc5.metrics.peak_deflection_m);
@@ -108,11 +114,11 @@ TEST(Twin, UncompensatedErrorGrowsWithAccelerationAndScIsWorse) {
 // carries the tip past each corner; compensation reduces that overshoot, though vibration excited at the
 // stop remains (docs/simulation.md).
 TEST(Twin, TriangleCornerOvershootIsReducedByCompensation) {
-  for (const char* build : {"OC", "SC"}) {
-    const TwinModels models = make_twin_models(build);
-    const std::string mechanism = std::string(build) == "OC" ? "oc-gu" : "sc-gu";
-    const RunMetrics off = run_once({mechanism, "triangle", 5.0, false}, models).metrics;
-    const RunMetrics on = run_once({mechanism, "triangle", 5.0, true}, models).metrics;
+  for (const char* build : {"oc-gu", "sc-gu"}) {
+    const auto robot = kinematics::load_robot(build);
+    const TwinModels models = make_twin_models(robot);
+    const RunMetrics off = run_once({build, "triangle", 5.0, false}, robot, models).metrics;
+    const RunMetrics on = run_once({build, "triangle", 5.0, true}, robot, models).metrics;
     ASSERT_EQ(off.corners, 2U) << build;
     ASSERT_EQ(on.corners, 2U) << build;
     EXPECT_GT(off.cornering_overshoot_m, 50e-6) << build;

@@ -7,6 +7,7 @@
 
 #include "stiffpath/compliance/model.hpp"
 #include "stiffpath/compliance/point_fit.hpp"
+#include "stiffpath/kinematics/five_bar.hpp"
 
 namespace stiffpath::compliance {
 
@@ -25,7 +26,7 @@ struct CvPoint {
   std::string id;
   Vec2 position;
   bool predicted = false;          //!< false where the method cannot predict the point (grid corners)
-  bool interior = false;           //!< not on the grid's boundary (x2y2, x2y3, x2y4 on the thesis grid)
+  bool interior = false;           //!< strictly inside the points' bounding rectangle (x2y2, x2y3, x2y4 on the thesis grid)
   double mean_abs_error_um = 0.0;  //!< mean absolute component error
   double mean_vector_error_um = 0.0;  //!< mean |Δ_pred − Δ_meas| over the load directions
   std::vector<CvLoad> loads;
@@ -41,18 +42,32 @@ struct CvMethod {
   double interior_mean_um = 0.0;   //!< over the interior points
 };
 
+//! A method that could not run on these points, and why.
+struct CvSkipped {
+  std::string method;
+  std::string reason;
+};
+
 struct CvReport {
   std::string source;
-  std::string mechanism;
+  std::string rows;    //!< the table's rows (its `mechanism` value), empty for all
+  std::string robot;   //!< the robot whose geometry the physical models used
   ForceConvention convention = ForceConvention::measured;
   ZeroForce zero_force = ZeroForce::relative;
   std::vector<CvMethod> methods;
+  std::vector<CvSkipped> skipped;  //!< methods that need a full rectangular grid when there is none
 };
 
-//! Runs leave-one-out for every method on one mechanism's samples. Grid methods predict a held-out
-//! node by linear interpolation from its neighbours along x (else along y) — the bilinear scheme on
-//! the grid without that node; the physical models are refitted without the point.
-CvReport cross_validate(const std::vector<PointSamples>& points, double link_length_m, const std::string& source,
-                        ZeroForce zero_force = ZeroForce::relative);
+//! Runs leave-one-out for every method that can run on the samples. Grid methods (bilinear,
+//! symmetric) need the points to form a full rectangular grid; they predict a held-out node by linear
+//! interpolation from its neighbours along x (else along y) — the bilinear scheme on the grid without
+//! that node. The physical models (with `geometry`) are refitted without the point and run on any
+//! layout. Methods that cannot run are listed in `skipped` with the reason.
+CvReport cross_validate(const std::vector<PointSamples>& points, const kinematics::FiveBarGeometry& geometry,
+                        const std::string& source, ZeroForce zero_force = ZeroForce::relative);
+
+//! The method with the smallest mean error over the points every method in the report predicted
+//! (ties: the first listed), and that mean for each method (µm) in `scores`.
+std::string favoured_method(const CvReport& report, std::vector<std::pair<std::string, double>>* scores = nullptr);
 
 }  // namespace stiffpath::compliance

@@ -13,11 +13,16 @@ namespace stiffpath::compliance {
 using kinematics::Mat2;
 using kinematics::Vec2;
 
+//! How far outside its measured rectangle a model may be asked before the `error` policy refuses the
+//! point (1 mm, m): a job that only grazes the rectangle's edge is not stopped, one that leaves it is.
+inline constexpr double kOutsideMargin_m = 1e-3;
+
 //! What a model does with a point outside the measured grid.
 enum class OutsidePolicy {
-  clamp,        //!< use the nearest point of the grid's rectangle (default); callers count such samples
+  clamp,        //!< use the nearest point of the grid's rectangle; callers count such samples
   extrapolate,  //!< extend the model's formula beyond the grid
-  error,        //!< refuse: callers must check inside() and stop
+  error,        //!< refuse (default): callers stop at a point farther than kOutsideMargin_m outside
+                //!< the rectangle; within the margin the model clamps
 };
 
 //! Whether the thesis's zero-force intercepts (n, p, u, w of eq. 4.8) are part of the prediction.
@@ -38,6 +43,10 @@ struct GridBounds {
     return p.x() >= x_min && p.x() <= x_max && p.y() >= y_min && p.y() <= y_max;
   }
   [[nodiscard]] Vec2 clamp(const Vec2& p) const noexcept;
+  //! The rectangle grown by `margin_m` on every side.
+  [[nodiscard]] GridBounds grown(double margin_m) const noexcept {
+    return {x_min - margin_m, x_max + margin_m, y_min - margin_m, y_max + margin_m};
+  }
 };
 
 //! A compliance model of the platform point: Δ = C(p)·F (+ intercepts in thesis_raw mode).
@@ -67,6 +76,10 @@ class Model {
     return zero_force_ == ZeroForce::thesis_raw ? Vec2(d + offset(p)) : d;
   }
   [[nodiscard]] bool inside(const Vec2& p) const noexcept { return bounds().contains(p); }
+  //! Whether the policy refuses p: `error` and p farther than kOutsideMargin_m outside the rectangle.
+  [[nodiscard]] bool refuses(const Vec2& p) const noexcept {
+    return outside_ == OutsidePolicy::error && !bounds().grown(kOutsideMargin_m).contains(p);
+  }
 
   [[nodiscard]] OutsidePolicy outside_policy() const noexcept { return outside_; }
   void set_outside_policy(OutsidePolicy policy) noexcept { outside_ = policy; }
@@ -80,7 +93,7 @@ class Model {
   }
 
  private:
-  OutsidePolicy outside_ = OutsidePolicy::clamp;
+  OutsidePolicy outside_ = OutsidePolicy::error;
   ZeroForce zero_force_ = ZeroForce::relative;
 };
 

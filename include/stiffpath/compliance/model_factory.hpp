@@ -1,44 +1,79 @@
-// Building compliance models by method name, from a data table, a model file or the built-in thesis data.
+// Building compliance models by method name from a robot's table, and loading model files and built-in models.
 #pragma once
 
 #include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "stiffpath/compliance/model.hpp"
 #include "stiffpath/compliance/point_fit.hpp"
+#include "stiffpath/kinematics/robot.hpp"
 #include "stiffpath/measurement/displacement_table.hpp"
 
 namespace stiffpath::compliance {
 
-//! Where a model came from, recorded in model files.
+//! Where a model came from and which robot it belongs to, recorded in model files.
 struct Provenance {
-  std::string source;      //!< data file path, or "thesis" for the built-in data set
-  std::string sha256;      //!< of the data file's bytes
-  std::string mechanism;   //!< "OC" / "SC"
+  std::string source;      //!< the data table ("builtin:thesis/displacements.csv" or a path)
+  std::string sha256;      //!< of the data table's bytes
+  std::string rows;        //!< the table's `mechanism` rows it was fitted to ("OC"; empty: all)
   ForceConvention convention = ForceConvention::measured;
+  std::string robot;       //!< name of the robot it was fitted for
+  //! The robot's geometry; nullopt for files of format version 1, which did not record it.
+  std::optional<kinematics::FiveBarGeometry> geometry;
+  //! How the method was chosen: "named" or "cross-validation" (with the scores in `selection`).
+  std::string selected_by = "named";
+  nlohmann::json selection;  //!< per method: mean leave-one-out error on the points all methods predict
 };
 
-//! A model together with its provenance.
+//! A model together with its provenance and a name for messages.
 struct LoadedModel {
   std::unique_ptr<Model> model;
   Provenance provenance;
+  std::string label;  //!< "thesis-oc", a file's path, or "physical fitted to <table>"
 };
 
 //! Method names accepted by fit_model: bilinear (the thesis's), symmetric, physical (order 1),
-//! physical-0, physical-2.
+//! physical-0, physical-2; "auto" (or "") picks the one cross-validation favours.
 std::vector<std::string> method_names();
 
-//! Fits `method` to the rows of `mechanism` in `table`. Throws stiffpath::Error for an unknown
-//! method or mechanism (naming the ones available) and for data the method cannot use.
-LoadedModel fit_model(const measurement::DisplacementTable& table, const std::string& mechanism,
-                      const std::string& method, ForceConvention convention = ForceConvention::measured,
-                      double link_length_m = 0.150);
+//! Fits `method` to the rows `rows` of `table` (every row when empty) for `robot`, whose geometry the
+//! physical models use and the provenance records. `auto`/empty: cross-validates every method that
+//! can run on these points (compliance::cross_validate) and takes the one with the smallest mean
+//! error over the points all of them predict (ties: the first in method_names() order). Throws
+//! stiffpath::Error for an unknown method or rows (naming the ones available) and for data the
+//! method cannot use (a grid method on an incomplete grid).
+LoadedModel fit_model(const measurement::DisplacementTable& table, const std::string& rows, const std::string& method,
+                      ForceConvention convention, const kinematics::Robot& robot);
 
 //! A built-in model ("thesis-oc", "thesis-sc" = the thesis's bilinear model; "thesis-oc-<method>"
-//! for another method), or a model file written by save_model. Errors name the file and field.
+//! for another method: the preset oc-gu's or sc-gu's table and geometry), or a model file written by
+//! save_model. Errors name the file, line and field.
 LoadedModel load_model(const std::string& name_or_path);
 //! True when `name` is one of the built-in model names.
 bool is_builtin_model(const std::string& name);
+
+//! What a command asks for besides the robot.
+struct ModelRequest {
+  std::string model;   //!< a model file or built-in name; empty: the robot's own
+  std::string method;  //!< fit the robot's table with this method instead of using its model
+  bool force = false;  //!< accept a model fitted for another geometry
+  ForceConvention convention = ForceConvention::measured;
+};
+
+//! The robot's compliance model: `request.model` if given; else the robot file's model file; else
+//! its table fitted with `request.method`, the robot file's method, or the method cross-validation
+//! favours. A model whose recorded geometry is not the robot's is refused (check_model_geometry)
+//! unless `request.force`. Throws stiffpath::Error when the robot has no compliance data.
+LoadedModel load_robot_model(const kinematics::Robot& robot, const ModelRequest& request = {});
+
+//! Refuses (stiffpath::Error, naming both) a model fitted for another geometry than the robot's, or
+//! one that does not record its geometry, unless `force`.
+void check_model_geometry(const LoadedModel& model, const kinematics::Robot& robot, bool force);
+
+//! The robot's displacement table restricted to its rows; throws when it has none.
+measurement::DisplacementTable robot_table(const kinematics::Robot& robot);
 
 }  // namespace stiffpath::compliance

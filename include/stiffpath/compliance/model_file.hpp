@@ -5,19 +5,20 @@
 #include <string>
 
 #include "stiffpath/compliance/model_factory.hpp"
+#include "stiffpath/core/json_fields.hpp"
 
 namespace stiffpath::compliance {
 
 inline constexpr const char* kModelFormat = "stiffpath-compliance-model";
-inline constexpr int kModelFormatVersion = 1;
+inline constexpr int kModelFormatVersion = 2;  //!< 2 records the robot and its geometry; 1 is still read
 
 //! The model file document.
 nlohmann::json model_to_json(const Model& model, const Provenance& provenance);
 //! Writes the document atomically.
 void save_model(const std::string& path, const Model& model, const Provenance& provenance);
-//! Parses a document; `label` names it in errors ("model.json.nodes[3].C_um_per_N: …").
-LoadedModel model_from_json(const nlohmann::json& document, const std::string& label);
-//! Reads a model file.
-LoadedModel load_model_file(const std::string& path);
+//! Parses a document; errors name its file, line and field ("model.json:40:9: nodes[3].C_um_per_N: …").
+LoadedModel model_from_json(const core::JsonDocument& document);
+//! Reads a model file (on disk or built in).
+LoadedModel load_model_file(const core::DataRef& file);
 
 }  // namespace stiffpath::compliance

@@ -32,8 +32,10 @@ class Mechanism {
   [[nodiscard]] virtual Reach check_reach(const Vec2& p) const noexcept = 0;
   //! 2-norm condition number of J(q).
   [[nodiscard]] virtual double condition_number(const Vec2& q) const noexcept;
+  //! Why p is refused, in words with the numbers involved; empty when it is reachable.
+  [[nodiscard]] virtual std::string explain(const Vec2& p) const;
 
-  //! Inverse kinematics that throws stiffpath::Error naming the point (in mm) and the reason.
+  //! Inverse kinematics that throws stiffpath::Error naming the point (in mm) and the reason (explain()).
   [[nodiscard]] Vec2 inverse(const Vec2& p) const;
 
   //! Velocity level: ṗ = J q̇.

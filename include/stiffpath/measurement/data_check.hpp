@@ -31,6 +31,9 @@ struct DataCheckOptions {
   double accuracy_m = 23e-6;  //!< CMM accuracy of one displacement cell (Faro Prime Arm ±23 µm, §2.3)
   double ul_m = 0.160;        //!< |UL|: one angle cell is good to 2·accuracy/|UL| rad (U and L both off)
   bool nominal_forces = false;  //!< regress on F_nominal_N (50 … 250 N) instead of F_N
+  //! Whether the robot is its own mirror image about y = 0 (the thesis's is); otherwise the symmetry
+  //! check is skipped, since an asymmetric robot's data need not be symmetric.
+  bool mirror_symmetric = true;
   [[nodiscard]] double angle_accuracy_rad() const noexcept { return 2.0 * accuracy_m / ul_m; }
 };
 

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "stiffpath/core/data_ref.hpp"
+
 namespace stiffpath::measurement {
 
 //! Direction of the applied load (the thesis used +x and −y).
@@ -28,43 +30,53 @@ struct ReadingSpread {
 //! One measurement. Displacements are of the CG point G relative to load step 0 (eq. 2.3). A missing
 //! cell (garbled in the seed, or not measured) is nullopt. All SI.
 struct DisplacementRow {
-  std::string mechanism;                 //!< "OC" or "SC"
+  std::string mechanism;                 //!< which build the row belongs to ("OC", "SC"); empty when the table has one
   ForceDirection direction = ForceDirection::plus_x;
   std::string point;                     //!< "x1y1" … "x3y5" (or a user's id)
   double x_m = 0.0, y_m = 0.0;           //!< nominal platform position
-  int step = 0;                          //!< load step, 1…n
-  double force_kgf = 0.0;                //!< hanging mass as in table 2.1 (includes step 0's 0.11 kgf)
+  int step = 0;                          //!< load step, 1…n (numbered per series when the table has none)
+  double force_kgf = 0.0;                //!< hanging mass as in table 2.1 (includes step 0's 0.11 kgf); F_N/g0 if not given
   double force_N = 0.0;                  //!< magnitude relative to step 0: (kgf − kgf₀)·9.80665
-  double nominal_force_N = 0.0;          //!< the thesis's rounded value (50 … 250 N)
+  double nominal_force_N = 0.0;          //!< the thesis's rounded value (50 … 250 N); F_N if not given
   std::optional<double> dx_m, dy_m, dz_m;
   std::optional<double> rx_rad, ry_rad;  //!< angular deflections about x and y
   std::optional<ReadingSpread> spread;   //!< from campaign processing with repeated readings
   int line = 0;                          //!< source line, for errors
 };
 
-//! A whole table with its source (path, or "thesis" for the built-in data set).
+//! A whole table with its source.
 struct DisplacementTable {
-  std::string source;
+  std::string source;   //!< how errors name it: a path, or "builtin:thesis/displacements.csv"
   std::vector<DisplacementRow> rows;
+  std::string sha256;   //!< of the file's bytes (empty for a table made in memory)
 
-  //! Rows of one mechanism ("OC"/"SC"); empty if none.
+  //! Rows of one mechanism ("OC"/"SC"); an empty name selects every row.
   [[nodiscard]] DisplacementTable filter(const std::string& mechanism) const;
   //! Distinct mechanisms present, in order of first appearance.
   [[nodiscard]] std::vector<std::string> mechanisms() const;
 };
 
-//! CSV columns, in order: mechanism,direction,point,x_mm,y_mm,step,force_kgf,F_N,F_nominal_N,
+//! CSV columns as written, in order: mechanism,direction,point,x_mm,y_mm,step,force_kgf,F_N,F_nominal_N,
 //! dx_mm,dy_mm,dz_mm,rx_deg,ry_deg. Empty cells are missing values. Tables with repeated readings carry
 //! kSpreadColumns after these (readings,dx_sd_mm,…); readers that do not know them ignore them.
+//! Reading needs only kRequiredDisplacementColumns, in any order (docs/measurement.md).
 inline constexpr const char* kDisplacementColumns =
     "mechanism,direction,point,x_mm,y_mm,step,force_kgf,F_N,F_nominal_N,dx_mm,dy_mm,dz_mm,rx_deg,ry_deg";
+
+//! The columns a table must have; the others of kDisplacementColumns are optional.
+inline constexpr const char* kRequiredDisplacementColumns = "point,x_mm,y_mm,direction,F_N,dx_mm,dy_mm";
 
 //! Optional trailing columns holding ReadingSpread (empty when a row has a single reading).
 inline constexpr const char* kSpreadColumns = "readings,dx_sd_mm,dy_sd_mm,dz_sd_mm,rx_sd_deg,ry_sd_deg";
 
-//! Loads a table from a file, or the built-in thesis data set when `path` is "thesis". Validates every
-//! row (known mechanism and direction, step ≥ 1, finite numbers, no duplicated key) and throws
-//! stiffpath::Error naming file, line and column.
+//! The thesis's data set, built into the binary (data/thesis/displacements.csv, tables 2.2–3.9).
+core::DataRef thesis_dataset();
+
+//! Loads a table. Validates every row (known direction, step ≥ 1, positive force, finite numbers, no
+//! duplicated key) and throws stiffpath::Error naming file, line and column; a missing required
+//! column is named with the header's line. Optional columns take the defaults documented above.
+DisplacementTable load_displacement_table(const core::DataRef& file);
+//! The same for a path on disk ("builtin:<path>" for a built-in file).
 DisplacementTable load_displacement_table(const std::string& path);
 
 //! Writes a table in the same CSV format (atomically); adds kSpreadColumns when any row has a spread.

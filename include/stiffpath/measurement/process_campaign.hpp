@@ -17,7 +17,7 @@ enum class ForceBasis {
 //! Options of process_campaign(). Defaults are the thesis's setup.
 struct ProcessOptions {
   std::string mechanism = "OC";            //!< label written in the table's mechanism column
-  ReplicaGeometry geometry;                //!< |UG|, |UL| (take them from kinematics::MechanismSpec)
+  ReplicaGeometry geometry;                //!< |UG|, |UL| (take them from kinematics::Robot::replica)
   ForceBasis force_basis = ForceBasis::measured;
   double nominal_step_N = 50.0;            //!< F_nominal_N = step × this (table 2.1's "≈ in N" column)
 };

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "stiffpath/core/data_ref.hpp"
+
 namespace stiffpath::measurement {
 
 //! One positioning trial: the error attained − commanded at a point (SI).
@@ -22,8 +24,12 @@ struct PositioningTrial {
 //! Columns: [mechanism,]point,x_mm,y_mm,trial,[approach,]err_x_mm,err_y_mm[,err_z_mm] (approach: + or -).
 //! Empty error cells are missing values (the thesis's table 3.3). Errors name file, line and column for
 //! missing columns, wrong units (err_x_in …), non-numbers, NaN and duplicated (mechanism, point,
-//! approach, trial). "thesis" loads the built-in data/thesis/repeatability.csv.
+//! approach, trial).
+std::vector<PositioningTrial> load_trials(const core::DataRef& file);
+//! The same for a path on disk ("builtin:<path>" for a built-in file).
 std::vector<PositioningTrial> load_trials(const std::string& path);
+//! The thesis's tables 3.2–3.3, built into the binary (data/thesis/repeatability.csv).
+core::DataRef thesis_repeatability();
 
 //! ISO 9283 §7.2–7.3 for one point, over its complete trials (all approaches pooled).
 struct PoseStatistics {

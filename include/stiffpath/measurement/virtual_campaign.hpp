@@ -30,7 +30,12 @@ Campaign simulate_campaign(const DisplacementTable& truth, const VirtualCampaign
 //! A complete, smooth stand-in for a measured table: every dx … ry cell of every row replaced by the
 //! series' least-squares line through the origin against F_N (fitted to the cells present). A model of
 //! the data, used as the truth of virtual campaigns built from the thesis data set (which has gaps).
-//! Throws if a series has a quantity with no cell at all.
+//! A quantity absent from the whole table (dz, rx, ry are optional) becomes zero; one absent from a
+//! single series while others have it is an error.
 DisplacementTable linear_truth(const DisplacementTable& table);
+//! Whether some row lacks a quantity (dx … ry) that other rows of the table have: a gap.
+bool has_gaps(const DisplacementTable& table);
+//! The table with every quantity it lacks entirely (dz, rx, ry are optional columns) set to zero.
+DisplacementTable zero_absent_quantities(const DisplacementTable& table);
 
 }  // namespace stiffpath::measurement

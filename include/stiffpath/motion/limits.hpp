@@ -32,7 +32,17 @@ struct MotionLimits {
   double max_jerk_m_s3 = default_jerk_m_s3(default_acceleration_m_s2);        //!< |j| (m/s³); 9807 = 5 g / 5 ms
 };
 
-//! Throws stiffpath::Error naming the field unless every limit is finite and positive.
+//! The ranges a MotionLimits field must lie in (SI). Beyond them no planar robot moves, and the
+//! planner's durations and sample counts stop being meaningful (a jerk of 1e-100 would make every
+//! move last longer than the universe has existed).
+inline constexpr double min_velocity_limit_m_s = 1e-3;        //!< 1 mm/s
+inline constexpr double max_velocity_limit_m_s = 100.0;       //!< 100 m/s
+inline constexpr double min_acceleration_limit_m_s2 = 1e-2;   //!< about 1 mg
+inline constexpr double max_acceleration_limit_m_s2 = 1e4;    //!< about 1000 g
+inline constexpr double min_jerk_limit_m_s3 = 1.0;            //!< 1 m/s³
+inline constexpr double max_jerk_limit_m_s3 = 1e8;            //!< 1e8 m/s³ (1000 g in 0.1 ms)
+
+//! Throws stiffpath::Error naming the field unless every limit is finite and within its range above.
 void validate(const MotionLimits& limits);
 
 }  // namespace stiffpath::motion

@@ -37,11 +37,14 @@ struct PathSegment {
   double length_m = 0.0;         //!< path length (m)
   double feed_m_s = std::numeric_limits<double>::infinity();  //!< requested speed F (m/s); +inf for G0
   double dwell_s = 0.0;          //!< dwells: duration (s)
-  double laser_power = 0.0;      //!< S word in effect (the controller's units, e.g. 0–1000)
+  //! Laser power as a fraction of full power, 0..1 (S / s_max, M106 S / 255, or 1 for M62), 0 when
+  //! the laser is off. With dynamic_power it is the power at the programmed feed.
+  double power = 0.0;
   double blend_tolerance_m = 0.0;  //!< G64 P (m): how far a blended corner may leave the corner point
   int line = 0;                  //!< 1-based source line of the G-code block
   bool rapid = false;            //!< G0
-  bool laser_on = false;         //!< laser firing: M3/M4 active, S > 0 and not a G0 move
+  bool laser_on = false;         //!< laser firing: M3/M4 (M106, M62) active, power > 0 and not a G0 move
+  bool dynamic_power = false;    //!< M4 (GRBL's laser mode): power scaled by speed / feed_m_s, see power_at
   JunctionMode mode = JunctionMode::exact_stop;  //!< how the junction at the end of this segment is passed
 };
 
@@ -68,6 +71,11 @@ Vec2 start_tangent(const PathSegment& segment) noexcept;
 Vec2 end_tangent(const PathSegment& segment) noexcept;
 //! Signed curvature (1/m): 0 for lines, ±1/radius for arcs.
 double curvature_1_m(const PathSegment& segment) noexcept;
+
+//! The laser power (fraction 0..1) on a segment at path speed v: `power` with M3, and with M4
+//! (dynamic) power · min(1, v / feed), so the energy per unit length stays that of the feed
+//! (GRBL's laser mode: power scaled by the current over the programmed rate). 0 when the laser is off.
+double power_at(const PathSegment& segment, double speed_m_s) noexcept;
 
 //! The left normal of a unit vector (rotated by +90°).
 inline Vec2 left_normal(const Vec2& u) noexcept { return {-u.y(), u.x()}; }

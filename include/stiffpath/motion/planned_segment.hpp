@@ -38,7 +38,7 @@ struct TrajectorySample {
   Vec2 acceleration_m_s2 = Vec2::Zero();  //!< analytic, centripetal part included (m/s²)
   Vec2 jerk_m_s3 = Vec2::Zero();          //!< analytic (m/s³)
   double path_speed_m_s = 0.0;            //!< speed along the path (m/s), ≥ 0
-  double laser_power = 0.0;               //!< S word in effect (controller units)
+  double power = 0.0;                     //!< laser power, fraction of full power 0..1 (0 when off; M4 scaled by speed)
   int line = 0;                           //!< source G-code line of the segment
   std::size_t segment = 0;                //!< index of the planned segment
   bool laser_on = false;                  //!< laser firing

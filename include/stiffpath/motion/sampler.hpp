@@ -17,6 +17,11 @@ class SampleSource {
   virtual std::optional<TrajectorySample> next() = 0;
 };
 
+//! How many samples a Sampler at `rate_hz` hands out for segments ending at `duration_s`: every
+//! t_k = k / rate up to the first at or after the end, i.e. ceil(duration · rate) + 1 (computed with
+//! the sampler's own comparison). Saturates at UINT64_MAX for durations beyond any real job.
+std::uint64_t sample_count(double duration_s, double rate_hz) noexcept;
+
 //! Samples at t_k = k / rate, k = 0, 1, …, pulling segments from a SegmentSource as time passes,
 //! so memory does not grow with the job. The last sample is the first t_k at or after the end of
 //! the last segment: the final point, at rest. An empty source gives no samples.

@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "stiffpath/motion/corner_blend.hpp"
 #include "stiffpath/motion/gcode_reader.hpp"
@@ -18,7 +19,7 @@ namespace stiffpath::motion {
 
 //! Everything that shapes a planned program. Documented defaults throughout.
 struct PlanOptions {
-  GcodeOptions gcode;                       //!< work offset, start position, default path mode
+  GcodeOptions gcode;                       //!< work offset, start and home positions, dialect
   MotionLimits limits;                      //!< v, a, j (defaults: 2 m/s, 5 g, 5 g / 5 ms)
   PlannerOptions planner;                   //!< junction rules, look-ahead bound
   double rate_hz = default_sample_rate_hz;  //!< sampling rate (Hz)
@@ -41,6 +42,8 @@ class TrajectoryStream final : public SampleSource {
   [[nodiscard]] std::uint64_t segments() const noexcept { return sampler_->segments(); }
   [[nodiscard]] const PlannerStatistics& planner_statistics() const noexcept { return planner_->statistics(); }
   [[nodiscard]] double rate_hz() const noexcept { return sampler_->rate_hz(); }
+  //! The reader's warnings, one per kind (complete once next() has returned nullopt).
+  [[nodiscard]] const std::vector<GcodeWarning>& warnings() const noexcept { return reader_->warnings(); }
 
  private:
   std::unique_ptr<GcodeReader> reader_;
@@ -48,6 +51,20 @@ class TrajectoryStream final : public SampleSource {
   std::unique_ptr<Planner> planner_;
   std::unique_ptr<Sampler> sampler_;
 };
+
+//! The size of a planned job, known before any sample is made.
+struct PlanSize {
+  std::uint64_t segments = 0;  //!< planned segments (the sampler's count)
+  double duration_s = 0.0;     //!< end of the last segment (s)
+  std::uint64_t samples = 0;   //!< what a TrajectoryStream with the same options hands out
+};
+
+//! Reads and plans the whole program without sampling it (flat memory, time proportional to the
+//! number of segments, not to the duration) and returns its size, so a caller can refuse a job
+//! before writing anything. Throws the program's refusals (GcodeErrors) like the stream does;
+//! options.gcode.on_warnings is not called.
+PlanSize measure_plan(const std::filesystem::path& gcode, const PlanOptions& options = {});
+PlanSize measure_plan(std::istream& in, const std::string& label, const PlanOptions& options = {});
 
 //! Reads and plans a whole program into memory (for evaluation at any time).
 Trajectory plan_gcode(const std::filesystem::path& gcode, const PlanOptions& options = {});

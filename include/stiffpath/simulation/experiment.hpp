@@ -5,7 +5,9 @@
 #include <vector>
 
 #include "stiffpath/compensation/compensator.hpp"
-#include "stiffpath/compensation/job.hpp"
+#include "stiffpath/compliance/model.hpp"
+#include "stiffpath/kinematics/robot.hpp"
+#include "stiffpath/job/job.hpp"
 #include "stiffpath/simulation/run_metrics.hpp"
 #include "stiffpath/simulation/twin_models.hpp"
 
@@ -13,19 +15,28 @@ namespace stiffpath::simulation {
 
 //! One test motion of fig. 4.7: its G-code (mm, robot frame) and the number of straight sides.
 struct TestMotion {
-  std::string name;   //!< "x", "y", "triangle"
-  std::string gcode;  //!< program text, the same as examples/<name>_motion.gcode / triangle.gcode
+  std::string name;   //!< "x", "y", "triangle", or a user's path
+  std::string gcode;  //!< program text
   int sides = 1;
+  std::string label;  //!< how errors name the program: "x_motion" …, or the user's file
 };
 
-//! The three motions of fig. 4.7: x (100 mm along y = 0), y (150 mm along x = 222.132 mm), triangle.
-const std::vector<TestMotion>& test_motions();
-//! The motion called `name`; throws stiffpath::Error naming the known ones.
-const TestMotion& test_motion(const std::string& name);
+//! The three motions of fig. 4.7 placed in a robot's measured rectangle `region` (m): x along the
+//! rectangle's middle from its left to its right edge, y along its middle from bottom to top, and the
+//! triangle (x_min + 0.15 w, y_min + 0.1 h), (x_max − 0.15 w, y_min + 0.1 h), (x_c, y_max − 0.1 h) —
+//! exactly the thesis's coordinates on its rectangle [172.132, 272.132] × [−75, 75] mm. A motion that
+//! passes a point `robot` refuses (reach or joint limits) is shrunk about the rectangle's centre by
+//! steps of 10 % until it does not; throws stiffpath::Error when even 35 % of it does not fit.
+std::vector<TestMotion> test_motions(const compliance::GridBounds& region, const kinematics::Robot& robot);
+//! The motion called `name` among `motions`; throws stiffpath::Error naming the known ones.
+const TestMotion& test_motion(const std::vector<TestMotion>& motions, const std::string& name);
+//! A user's path from a G-code file given as "FILE[:SIDES]" (sides 1 … 12, default 1), named by the
+//! file's stem. Throws stiffpath::Error for a file that cannot be read or a bad side count.
+TestMotion user_motion(const std::string& file_and_sides);
 
 //! One configuration and run of the matrix.
 struct RunSpec {
-  std::string mechanism = "oc-gu";  //!< preset (oc-gu, oc-gl, sc-gu, sc-gl)
+  std::string robot = "oc-gu";      //!< the robot's name (a preset or a robot file's `name`)
   std::string motion = "y";
   double acceleration_g = 5.0;      //!< path acceleration limit, in g (jerk: default ramp time 5 ms)
   bool compensated = true;
@@ -33,11 +44,12 @@ struct RunSpec {
 
 //! Everything shared by the runs of a matrix. Documented defaults.
 struct ExperimentOptions {
-  std::vector<std::string> mechanisms{"oc-gu", "oc-gl", "sc-gu", "sc-gl"};
-  std::vector<std::string> motions{"x", "y", "triangle"};
+  std::vector<std::string> robots{"oc-gu", "oc-gl", "sc-gu", "sc-gl"};  //!< presets or robot files
+  std::vector<std::string> motions{"x", "y", "triangle"};  //!< of test_motions(); may be empty when paths are given
+  std::vector<TestMotion> paths;       //!< users' own paths, run after the motions
   std::vector<double> accelerations_g{1, 2, 3, 4, 5};
-  TrueComplianceOptions truth;         //!< C_true per build
-  CampaignFitOptions fit;              //!< compensation model per build (virtual campaign + thesis fit)
+  TrueComplianceOptions truth;         //!< C_true per robot data (table, rows, geometry)
+  CampaignFitOptions fit;              //!< compensation model per robot data (virtual campaign + fit)
   compensation::CompensatorOptions compensator;  //!< gain etc.; `enabled` is set per run
   SimulationOptions simulation;
   double command_rate_hz = 2000.0;  //!< rate of the planned samples and joint commands (the thesis's 2 kHz loop)
@@ -46,31 +58,34 @@ struct ExperimentOptions {
 //! One row of the experiment's results.
 struct RunResult {
   RunSpec spec;
-  std::string build;     //!< "OC"/"SC"
+  std::string rows;      //!< the robot's rows of its table ("OC"/"SC" for the presets)
   std::string cg_label;  //!< "G_U"/"G_L"
   RunMetrics metrics;
   double duration_s = 0.0;
 };
 
-//! The plant's true compliance and the compensation model of one build, made once and shared by runs.
+//! The plant's true compliance and the compensation model of one robot's data, made once and shared by
+//! the robots with the same data and geometry, and the robot's test motions.
 struct TwinModels {
   std::shared_ptr<const compliance::Model> truth;
   std::shared_ptr<const compliance::Model> compensation;
+  std::vector<TestMotion> motions;  //!< test_motions() in the robot's measured rectangle, then options.paths
 };
-TwinModels make_twin_models(const std::string& build, const ExperimentOptions& options = {});
+TwinModels make_twin_models(const kinematics::Robot& robot, const ExperimentOptions& options = {});
 
-//! Plans, compensates (or not), simulates and measures one run. Throws stiffpath::Error when a
-//! command is refused by the compensator (naming the reason) or the run cannot be measured.
-RunResult run_once(const RunSpec& spec, const TwinModels& models, const ExperimentOptions& options = {});
+//! Plans, compensates (or not), simulates and measures one run of `robot`. Throws stiffpath::Error
+//! when a command is refused by the compensator (naming the reason) or the run cannot be measured.
+RunResult run_once(const RunSpec& spec, const kinematics::Robot& robot, const TwinModels& models,
+                   const ExperimentOptions& options = {});
 
-//! Runs the whole matrix mechanisms × {without, with} × motions × accelerations (120 runs by default),
-//! models made once per build.
+//! Runs the whole matrix robots × {without, with} × motions × accelerations (120 runs by default),
+//! models made once per robot data.
 std::vector<RunResult> run_experiment(const ExperimentOptions& options = {});
 
 //! CSV header and one line per run (units in the column names, lengths in mm).
 std::string experiment_csv(const std::vector<RunResult>& results);
 
-//! A plain-text table (Markdown) with one line per mechanism × motion at the highest acceleration run:
+//! A plain-text table (Markdown) with one line per robot × motion at the highest acceleration run:
 //! length error and maximum deviation without → with compensation and the share removed
 //! (1 − |with|/|without|), deviation area and residual vibration.
 std::string experiment_summary(const std::vector<RunResult>& results);

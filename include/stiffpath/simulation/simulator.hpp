@@ -6,8 +6,8 @@
 #include <optional>
 #include <vector>
 
-#include "stiffpath/compensation/joint_reader.hpp"
-#include "stiffpath/kinematics/mechanism_spec.hpp"
+#include "stiffpath/compensation/samples.hpp"
+#include "stiffpath/kinematics/robot.hpp"
 #include "stiffpath/simulation/plant.hpp"
 
 namespace stiffpath::simulation {
@@ -31,17 +31,17 @@ struct SimulationResult {
 };
 
 //! Source of joint samples in time order (nullopt at the end), e.g. a JointReader or an in-process job.
-using JointSource = std::function<std::optional<compensation::JointRecord>()>;
+using JointSource = std::function<std::optional<compensation::JointCommand>()>;
 
 //! Cubic Hermite reference between two joint samples: q and q̇ match both ends, q̈ is linear in between
 //! (the drive's interpolation of a 2 kHz stream). `s` ∈ [0, 1] is the fraction of the interval.
-JointReference interpolate(const compensation::JointRecord& a, const compensation::JointRecord& b, double s) noexcept;
+JointReference interpolate(const compensation::JointCommand& a, const compensation::JointCommand& b, double s) noexcept;
 
 //! Simulates the job: the plant starts at rest, undeflected, at the first sample's joints; each command
 //! interval is split into ⌈interval·step_rate⌉ equal steps; marks are recorded while the interval's
 //! starting sample has the laser on. Throws stiffpath::Error when the source is empty, times do not
 //! increase, or the state becomes non-finite.
-SimulationResult simulate(const JointSource& source, const kinematics::MechanismSpec& mechanism,
+SimulationResult simulate(const JointSource& source, const kinematics::Robot& robot,
                           std::shared_ptr<const compliance::Model> truth, const SimulationOptions& options = {});
 
 }  // namespace stiffpath::simulation

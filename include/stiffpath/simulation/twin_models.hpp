@@ -6,14 +6,16 @@
 #include <string>
 
 #include "stiffpath/compliance/model.hpp"
+#include "stiffpath/kinematics/robot.hpp"
 #include "stiffpath/measurement/displacement_table.hpp"
 
 namespace stiffpath::simulation {
 
-//! How C_true is made. Defaults: the physics-based model fitted to the thesis's data, perturbed by ±10 %.
+//! How C_true is made. Defaults: the physics-based model fitted to the robot's own data, perturbed by ±10 %.
 struct TrueComplianceOptions {
-  //! Base field: a built-in or file model (compliance::load_model); empty = "thesis-<build>-physical",
-  //! the smooth, symmetric, positive definite C = U⁻ᵀ D(p) U⁻¹ fitted to all of the thesis's data.
+  //! Base field: a built-in or file model (compliance::load_model); empty = the physical model (order 1,
+  //! the smooth, symmetric, positive definite C = U⁻ᵀ D(p) U⁻¹ with the robot's geometry) fitted to all
+  //! of the robot's table, or the robot's model file when it names no table.
   std::string base_model;
   //! Relative amplitude ε of the seeded smooth perturbation: C_true = S C S, S = diag(√sx, √sy), sx and sy
   //! quadratic polynomials over the grid with values in [1 − ε, 1 + ε]. Keeps C_true symmetric positive
@@ -22,28 +24,32 @@ struct TrueComplianceOptions {
   std::uint64_t seed = 1;  //!< seed of the perturbation's coefficients
 };
 
-//! The true compliance of build "OC" or "SC" (m/N). Throws stiffpath::Error for an unknown build,
-//! a bad base model or ε outside [0, 0.5].
-std::shared_ptr<const compliance::Model> make_true_compliance(const std::string& build,
+//! The true compliance of `robot` (m/N). Throws stiffpath::Error when the robot has no compliance data,
+//! for a bad base model (or one fitted for another geometry) or ε outside [0, 0.5].
+std::shared_ptr<const compliance::Model> make_true_compliance(const kinematics::Robot& robot,
                                                               const TrueComplianceOptions& options = {});
 
 //! How the compensation model is obtained from C_true (the thesis's route, §2.3 and §4.2).
 struct CampaignFitOptions {
-  std::string method = "bilinear";  //!< compliance::fit_model method; the thesis's grid + eq. 4.12
+  //! compliance::fit_model method; empty: the robot file's method (the presets: "bilinear", the
+  //! thesis's grid + eq. 4.12), else the one cross-validation of the virtual table favours.
+  std::string method;
   double noise_sigma_m = 11.5e-6;   //!< σ per CMM coordinate: the arm's ±23 µm as a 2σ bound
   std::uint64_t seed = 7;           //!< seed of the campaign's noise
 };
 
-//! The displacement table a campaign on `truth` would measure: the thesis's 15 points, directions and
-//! 5 load steps, dx, dy = C_true(p)·F (F = F_N along the load direction), dz and the tilts from the
-//! thesis data's own linear trend, then CMM readings with noise (measurement::simulate_campaign) and
-//! processing by eq. 2.3 (measurement::process_campaign).
-measurement::DisplacementTable virtual_campaign_table(const compliance::Model& truth, const std::string& build,
+//! The displacement table a campaign on `truth` would measure: the robot's own measurement points,
+//! directions, load steps and forces (its table), dx, dy = C_true(p)·F (F = F_N along the load
+//! direction), dz and the tilts from its data's own linear trend (zero when the table has none), then
+//! CMM readings with noise (measurement::simulate_campaign, with the robot's replica, or G read
+//! directly when it has none) and processing by eq. 2.3 (measurement::process_campaign).
+measurement::DisplacementTable virtual_campaign_table(const compliance::Model& truth, const kinematics::Robot& robot,
                                                       const CampaignFitOptions& options = {});
 
 //! The model the compensation uses: `options.method` fitted to virtual_campaign_table (no inverse crime:
-//! the fit never sees C_true itself, only noisy readings at 15 points).
-std::shared_ptr<const compliance::Model> fit_compensation_model(const compliance::Model& truth, const std::string& build,
+//! the fit never sees C_true itself, only noisy readings at the measured points).
+std::shared_ptr<const compliance::Model> fit_compensation_model(const compliance::Model& truth,
+                                                                const kinematics::Robot& robot,
                                                                 const CampaignFitOptions& options = {});
 
 }  // namespace stiffpath::simulation

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <opencv2/core.hpp>
 #include <optional>
 #include <string>
@@ -30,5 +31,26 @@ std::vector<std::uint8_t> encode_image(const cv::Mat& image, const std::filesyst
 
 //! encode_image, then writes the bytes through core::AtomicFile (no half-written file on failure).
 void write_image(const std::filesystem::path& path, const cv::Mat& image, double dpi);
+
+//! Writes a PNG band by band as its rows come (for images too large to hold twice in memory), with
+//! `dpi` in its pHYs chunk, through core::AtomicFile: the file appears only after commit().
+class PngRowWriter {
+ public:
+  //! Starts the file: width × height pixels of OpenCV `type` CV_8UC1, CV_16UC1, CV_8UC3 or CV_16UC3
+  //! (BGR). Throws stiffpath::Error naming the file for anything else or a file that cannot be created.
+  PngRowWriter(const std::filesystem::path& path, int width, int height, int type, double dpi);
+  ~PngRowWriter();
+  PngRowWriter(const PngRowWriter&) = delete;
+  PngRowWriter& operator=(const PngRowWriter&) = delete;
+  //! The next rows, top to bottom (`type`, width columns). Throws on a mismatch or a write error.
+  void write(const cv::Mat& rows);
+  //! After the last row: ends the PNG and renames the file into place. Throws if rows are missing.
+  void commit();
+
+  struct Impl;
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace stiffpath::vision

@@ -2,7 +2,9 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <opencv2/core.hpp>
+#include <string>
 #include <vector>
 
 #include "stiffpath/evaluation/path_metrics.hpp"
@@ -49,6 +51,8 @@ struct RenderOptions {
   std::uint64_t seed = 1;         //!< seed of every random choice (noise, texture, specks)
   //! Metrics options of the ground truth; by default an interpolating spline (exact for the dense path).
   evaluation::PathMetricsOptions truth_options{0.0};
+  //! Called after each band of rows with the fraction of the image made (0..1); may be empty.
+  std::function<void(double)> progress;
 };
 
 //! A rendered scan and what is known about it.
@@ -65,12 +69,75 @@ struct RenderedScan {
 //! wiggle along the whole path. One point list per side; consecutive sides share their corner.
 std::vector<std::vector<Point2>> sample_shape(const PathShape& shape, const Wiggle& wiggle, double step_m = 20e-6);
 
+//! Resamples a path given by points in marking order (m) at equal arc-length steps of at most
+//! `step_m`, keeping its first and last point. A path sampled in time (a simulated mark) is dense
+//! where the spot moves slowly; resampled, every part of it weighs by its length in the metrics, as
+//! the cross-sections of a scan do. Throws stiffpath::Error for fewer than two distinct points.
+std::vector<Point2> resample_path(const std::vector<Point2>& points, double step_m = 20e-6);
+
+//! Receives a rendered image band by band, top to bottom: `rows` (CV_8U/CV_16U, one or three
+//! channels, the image's full width) are the image's rows first_row … first_row + rows.rows − 1.
+using RowSink = std::function<void(int first_row, const cv::Mat& rows)>;
+
 //! Renders sides (points in m, any frame): rotates them, places them `margin_m` inside an image
 //! just large enough, draws the mark as every point within mark_width/2 of the path (a round
 //! laser spot: round ends) with area-sampled anti-aliasing, then blur, paper texture, shading,
-//! noise and specks. The truth is evaluation::measure_sides on the placed path. Throws
+//! noise and specks. The truth is evaluation::measure_sides on the placed path. The image is made
+//! in bands of rows, so its working memory is a few bands besides the image itself. Throws
 //! stiffpath::Error for invalid options or an image above 200 Mpx.
 RenderedScan render_scan(const std::vector<std::vector<Point2>>& sides, bool closed, const RenderOptions& options);
+
+//! The size (px) of the image render_scan makes of these sides with these options.
+cv::Size rendered_size(const std::vector<std::vector<Point2>>& sides, const RenderOptions& options);
+
+//! The same, handing the image to `sink` band by band instead of keeping it (RenderedScan::image is
+//! left empty): with a streaming writer the image is never held whole in memory.
+RenderedScan render_scan(const std::vector<std::vector<Point2>>& sides, bool closed, const RenderOptions& options,
+                         const RowSink& sink);
+
+//! One mark on a plate: its path in the plate's frame (m, x right and y down from the page's top-left
+//! corner), one point list per side as sample_shape gives them.
+struct PlateMarkPath {
+  std::vector<std::vector<Point2>> sides;
+  bool closed = false;
+};
+
+//! Lettering on a plate, engraved with strokes as wide as the marks (OpenCV's Hershey simplex font).
+struct PlateLabel {
+  std::string text;
+  Point2 at_m{0, 0};        //!< bottom-left corner of the text (m, page frame)
+  double height_m = 4e-3;   //!< height of a capital letter (m)
+};
+
+//! A page holding several marks and their labels, as a lab scans it.
+struct Plate {
+  double width_m = 0.210, height_m = 0.297;  //!< page size (m); A4 by default
+  std::vector<PlateMarkPath> marks;
+  std::vector<PlateLabel> labels;
+};
+
+//! The ground truth of one mark of a rendered plate.
+struct PlateMarkTruth {
+  std::vector<std::vector<Point2>> sides;  //!< its centre path per side (m, page = image frame)
+  bool closed = false;
+  evaluation::PathMetrics truth;           //!< evaluation::measure_sides on that path
+  cv::Rect2d box_m;                        //!< bounding box of the path (m), not counting the mark's width
+};
+
+//! A rendered plate: the image (one pixel per dpi step of the page) and each mark's truth.
+struct RenderedPlate {
+  cv::Mat image;  //!< empty when rendered into a RowSink
+  double dpi = 1200;
+  double mark_width_m = 0;
+  std::vector<PlateMarkTruth> marks;
+};
+
+//! Renders a plate like render_scan renders one path (options.rotation_rad and margin_m are not used:
+//! the page is the image). Throws stiffpath::Error for a mark or label outside the page, invalid
+//! options or an image above 200 Mpx.
+RenderedPlate render_plate(const Plate& plate, const RenderOptions& options);
+//! The same into a RowSink.
+RenderedPlate render_plate(const Plate& plate, const RenderOptions& options, const RowSink& sink);
 
 //! Draws the coverage (0..1, area fraction of each pixel within `radius_px` of the polyline given in
 //! pixel units) into `coverage` (CV_32F), keeping the larger value where something is already drawn.

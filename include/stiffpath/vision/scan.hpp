@@ -1,6 +1,7 @@
 // Measuring a laser-marked path on a scan (thesis §4.6): segmentation, sub-pixel centre line, px → m, path metrics.
 #pragma once
 
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 #include <string>
@@ -14,7 +15,10 @@ using evaluation::Point2;
 
 //! Options of the scan analysis. Pixel-sized settings are in px of the scan.
 struct ScanOptions {
-  int sides = 1;  //!< straight sides of the path: 1 a line, 3 a triangle, N a polyline
+  //! Straight sides of the path: 1 a line, 3 a triangle, N a polyline; 0 = any: a straight line, else
+  //! the fewest straight sides (up to max_auto_sides) that join into one chain or loop.
+  int sides = 1;
+  int max_auto_sides = 4;  //!< most sides tried for sides = 0 (lines, corners, triangles, quadrilaterals)
   //! Spline cutoff wavelength and corner trim of the metrics (defaults 1 mm and 1 mm).
   evaluation::PathMetricsOptions metrics;
   int cell_px = 4;                  //!< cell of the coarse grid used to find the mark (px)
@@ -23,6 +27,14 @@ struct ScanOptions {
   int baseline_window = 31;         //!< cross-sections averaged for the background level
   double min_mark_length_m = 1e-3;  //!< dark features smaller than this are dust specks
   std::string label = "<image>";    //!< names the image in errors
+  //! Analyse only this region of the image (px; empty = the whole image). Every position reported
+  //! stays in the whole image's frame; a mark touching the region's edge is refused like one on the
+  //! image's border.
+  cv::Rect roi_px;
+  //! analyse_plate: dark features smaller than this across are listed as labels or fragments, not measured.
+  double min_plate_mark_m = 10e-3;
+  //! Called now and then with the fraction of the work done (0..1), from the calling thread; may be empty.
+  std::function<void(double)> progress;
 };
 
 //! What the scan says about one side beyond the path metrics.
@@ -39,6 +51,10 @@ struct ScanResult {
   evaluation::PathMetrics metrics;  //!< length, deviation area, max deviation, straightness, sides, corners
   std::vector<ScanSide> sides;      //!< same order as metrics.sides
   double width_m = 0;               //!< median mark width over all sides (m)
+  //! Bound on the length's error from free ends that are not round laser-spot ends (m): 0 when every
+  //! free end is round (then the length is good to a few µm, docs/vision.md), else the sum of their
+  //! bounds, each also stated in a warning.
+  double length_uncertainty_m = 0;
   double mark_darkness = 0;         //!< 1 − mark/paper brightness of the fully marked core
   double paper_noise = 0;           //!< robust σ of the paper's relative brightness at the coarse grid
   int specks_ignored = 0;           //!< dark features below min_mark_length_m that were ignored
@@ -63,5 +79,46 @@ ScanResult analyse_scan(const cv::Mat& grey, double dpi, const ScanOptions& opti
 //! The result with units in the keys: evaluation::to_json(metrics) plus width_mm (and per side),
 //! dpi, image size, mark darkness, specks ignored, rejected sections and the warnings.
 nlohmann::json to_json(const ScanResult& result);
+
+//! The shape measured, in the words of ScanOptions: "line", "triangle" (three sides, closed) or "polyline:N".
+std::string shape_name(const ScanResult& result);
+
+//! One dark feature of a plate and what became of it.
+struct PlateMark {
+  int index = 0;          //!< 1-based, in the order of the features' top edges (reading order)
+  cv::Rect2d box_m;       //!< bounding box in the image frame (m): x, y of its top-left corner, width, height
+  bool measured = false;
+  std::string reason;     //!< why it was not measured (a label too small to be a mark, a shape that is not one, …)
+  ScanResult result;      //!< the measurement, when measured
+};
+
+//! Lettering on a plate: dark features smaller than a mark, grouped where they stand close together.
+struct PlateLabelArea {
+  cv::Rect2d box_m;   //!< bounding box of the group (m, image frame)
+  int features = 0;   //!< dark features in it (letters, or strokes of letters)
+};
+
+//! Every mark of a plate.
+struct PlateResult {
+  std::vector<PlateMark> marks;       //!< features at least min_plate_mark_m across
+  std::vector<PlateLabelArea> labels; //!< smaller features (≥ min_mark_length_m), grouped: labels, lettering, fragments
+  int specks_ignored = 0;             //!< dark features smaller than min_mark_length_m
+  double dpi = 0;
+  int width_px = 0, height_px = 0;
+  double paper_noise = 0;
+};
+
+//! Measures every mark on a scan of a plate (or of options.roi_px) holding several: each dark feature at
+//! least options.min_plate_mark_m across that does not touch the border is measured as options.sides
+//! says (0 = find its shape); marks that are not straight lines or polylines, or cannot be measured, are
+//! listed with the reason. Smaller features (labels, lettering, fragments) are grouped into label areas
+//! (features whose boxes are closer than the taller one's height) and not measured. Throws
+//! stiffpath::Error only for a bad image or options.
+PlateResult analyse_plate(const cv::Mat& grey, double dpi, const ScanOptions& options = {});
+
+//! The plate as JSON: image size, dpi, specks ignored, one entry per mark with box_mm
+//! [x, y, width, height], status "measured" (with shape and the keys of to_json(ScanResult)) or
+//! "skipped" (with reason), and the label areas (box_mm, features).
+nlohmann::json to_json(const PlateResult& plate);
 
 }  // namespace stiffpath::vision

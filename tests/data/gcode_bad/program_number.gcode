@@ -1,2 +1,3 @@
-; expect: 2:1: O100: program numbers and subroutines are not supported
+; options: strict
+; expect: 3:1: O100: program numbers and subroutines are not supported
 O100

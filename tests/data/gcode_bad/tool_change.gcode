@@ -1,2 +1,3 @@
-; expect: 2:1: M6: tool changes are not supported
+; options: strict
+; expect: 3:1: M6: tool changes are not supported
 M6

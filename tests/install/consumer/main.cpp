@@ -2,10 +2,10 @@
 #include <cstdio>
 
 #include "stiffpath/compliance/model_factory.hpp"
-#include "stiffpath/kinematics/mechanism_spec.hpp"
+#include "stiffpath/kinematics/robot.hpp"
 
 int main() {
-  const auto robot = stiffpath::kinematics::load_mechanism("oc-gu").five_bar();
+  const auto robot = stiffpath::kinematics::load_robot("oc-gu").five_bar();
   const auto p = robot.forward(robot.inverse({0.222132, 0.0375}));
   const auto model = stiffpath::compliance::load_model("thesis-oc");
   const auto d = model.model->predict({0.272132, 0.075}, {0.0, -242.71});

@@ -1,0 +1,29 @@
+// The robot and model flags shared by every command, and the names of tables on the command line.
+#include "robot_flags.hpp"
+
+#include "stiffpath/measurement/displacement_table.hpp"
+
+namespace stiffpath::cli {
+
+CLI::Option* add_robot_flag(CLI::App* cmd, std::string& robot) {
+  return cmd->add_option("--robot,--mechanism", robot,
+                         "Robot: a preset (oc-gu, oc-gl, sc-gu, sc-gl) or a robot file (default: oc-gu)");
+}
+
+kinematics::Robot load_robot_flag(const std::string& robot) {
+  return kinematics::load_robot(robot.empty() ? kDefaultRobot : robot);
+}
+
+void add_model_flags(CLI::App* cmd, compliance::ModelRequest& request) {
+  cmd->add_option("--model", request.model,
+                  "Compliance model file or built-in (thesis-oc, thesis-sc[-<method>]); default: the robot's own");
+  cmd->add_option("--method", request.method,
+                  "Fit the robot's table with this method (bilinear, symmetric, physical, physical-0, physical-2, auto)");
+  cmd->add_flag("--force-model", request.force, "Use a model even if it was fitted for another robot geometry");
+}
+
+core::DataRef table_ref(const std::string& argument) {
+  return argument == "thesis" ? measurement::thesis_dataset() : core::parse_data_ref(argument);
+}
+
+}  // namespace stiffpath::cli

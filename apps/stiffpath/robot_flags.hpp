@@ -1,0 +1,28 @@
+// The robot and model flags shared by every command (--robot with its alias --mechanism, --model, --method, --force-model).
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "stiffpath/compliance/model_factory.hpp"
+#include "stiffpath/core/data_ref.hpp"
+#include "stiffpath/kinematics/robot.hpp"
+
+namespace stiffpath::cli {
+
+//! The robot used when a command names none.
+inline constexpr const char* kDefaultRobot = "oc-gu";
+
+//! Registers --robot (alias --mechanism): a preset or a robot file.
+CLI::Option* add_robot_flag(CLI::App* cmd, std::string& robot);
+//! The named robot, or the default preset when `robot` is empty.
+kinematics::Robot load_robot_flag(const std::string& robot);
+
+//! Registers --model, --method and --force-model into `request`.
+void add_model_flags(CLI::App* cmd, compliance::ModelRequest& request);
+
+//! A displacement table named on the command line: "thesis" for the built-in data set, a file, or
+//! "builtin:<path>".
+core::DataRef table_ref(const std::string& argument);
+
+}  // namespace stiffpath::cli

@@ -1,0 +1,46 @@
+# Installs the build into a scratch prefix, builds tests/install/main.c against it through find_package and through
+# pkg-config, runs both.
+file(REMOVE_RECURSE ${WORK_DIR})
+execute_process(COMMAND ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/prefix RESULT_VARIABLE result OUTPUT_QUIET)
+if(result)
+  message(FATAL_ERROR "cmake --install failed: ${result}")
+endif()
+set(expected "x_mm=222\\.132 y_mm=37\\.500 dy_um=-16[5-9][0-9]")
+
+execute_process(COMMAND ${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${WORK_DIR}/build -G Ninja
+                        -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix -DCMAKE_BUILD_TYPE=Release
+                RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(result)
+  message(FATAL_ERROR "configuring the C consumer failed:\n${out}\n${err}")
+endif()
+execute_process(COMMAND ${CMAKE_COMMAND} --build ${WORK_DIR}/build RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(result)
+  message(FATAL_ERROR "building the C consumer failed:\n${out}\n${err}")
+endif()
+execute_process(COMMAND ${WORK_DIR}/build/c_consumer OUTPUT_VARIABLE out RESULT_VARIABLE result)
+if(result OR NOT out MATCHES "${expected}")
+  message(FATAL_ERROR "the find_package consumer printed '${out}' (exit ${result})")
+endif()
+
+file(GLOB pc_file ${WORK_DIR}/prefix/lib*/pkgconfig/stiffpath_c.pc ${WORK_DIR}/prefix/lib/*/pkgconfig/stiffpath_c.pc)
+get_filename_component(pc_dir "${pc_file}" DIRECTORY)
+set(ENV{PKG_CONFIG_PATH} ${pc_dir})
+execute_process(COMMAND pkg-config --cflags --libs stiffpath_c OUTPUT_VARIABLE flags RESULT_VARIABLE result
+                OUTPUT_STRIP_TRAILING_WHITESPACE)
+if(result)
+  message(FATAL_ERROR "pkg-config does not find stiffpath_c in ${pc_dir}")
+endif()
+separate_arguments(flags UNIX_COMMAND "${flags}")
+execute_process(COMMAND cc -std=c99 ${SOURCE_DIR}/main.c ${flags} -o ${WORK_DIR}/pc_consumer
+                RESULT_VARIABLE result ERROR_VARIABLE err)
+if(result)
+  message(FATAL_ERROR "building with pkg-config's flags (${flags}) failed:\n${err}")
+endif()
+string(REGEX REPLACE ".*-L([^ ;]+).*" "\\1" libdir "${flags}")
+set(ENV{LD_LIBRARY_PATH} ${libdir})
+execute_process(COMMAND ${WORK_DIR}/pc_consumer OUTPUT_VARIABLE out RESULT_VARIABLE result)
+if(result OR NOT out MATCHES "${expected}")
+  message(FATAL_ERROR "the pkg-config consumer printed '${out}' (exit ${result})")
+endif()
+message(STATUS "C consumers: ${out}")
+file(REMOVE_RECURSE ${WORK_DIR})

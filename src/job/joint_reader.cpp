@@ -1,0 +1,113 @@
+// JointReader: CSV and binary joint trajectories back into records, with located errors.
+#include "stiffpath/job/joint_reader.hpp"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <fmt/format.h>
+
+#include "stiffpath/job/joint_writer.hpp"
+#include "stiffpath/core/error.hpp"
+
+namespace stiffpath::job {
+
+namespace {
+template <typename T>
+T get(const char*& p) {
+  std::array<char, sizeof(T)> bytes;
+  std::memcpy(bytes.data(), p, sizeof(T));
+  if constexpr (std::endian::native == std::endian::big) std::reverse(bytes.begin(), bytes.end());
+  p += sizeof(T);
+  return std::bit_cast<T>(bytes);
+}
+
+constexpr const char* kCsvColumns[13] = {"t_s",   "theta1_rad", "theta2_rad", "omega1_rad_s", "omega2_rad_s",
+                                         "laser", "x_mm",       "y_mm",       "xcmd_mm",      "ycmd_mm",
+                                         "fx_n",  "fy_n",       "line"};
+}  // namespace
+
+JointReader::JointReader(const std::string& path) : path_(path), in_(path, std::ios::binary) {
+  if (!in_) throw Error(SourceLocation{path}, "cannot open file");
+  std::array<char, kBinaryHeaderBytes> header{};
+  in_.read(header.data(), header.size());
+  binary_ = in_.gcount() == static_cast<std::streamsize>(header.size()) && std::memcmp(header.data(), kBinaryMagic, 8) == 0;
+  if (binary_) {
+    const char* p = header.data() + 8;
+    const auto version = get<std::uint32_t>(p);
+    const auto record = get<std::uint32_t>(p);
+    if (version != kBinaryVersion || record != kBinaryRecordBytes) {
+      throw Error(SourceLocation{path}, fmt::format("binary joint file version {} with {}-byte records; this stiffpath "
+                                                    "reads version {} with {}-byte records",
+                                                    version, record, kBinaryVersion, kBinaryRecordBytes));
+    }
+    rate_hz_ = get<double>(p);
+    expected_ = get<std::uint64_t>(p);
+    mechanism_.assign(p, strnlen(p, 32));
+    return;
+  }
+  in_.close();
+  csv_ = std::make_unique<core::CsvReader>(path);
+  for (std::size_t i = 0; i < 13; ++i) columns_[i] = csv_->column(kCsvColumns[i]);
+}
+
+JointReader::~JointReader() = default;
+
+std::optional<compensation::JointCommand> JointReader::next() { return binary_ ? next_binary() : next_csv(); }
+
+std::optional<compensation::JointCommand> JointReader::next_csv() {
+  if (!csv_->next()) return std::nullopt;
+  const auto n = [&](int i) { return csv_->number(columns_[i]); };
+  compensation::JointCommand r;
+  r.t_s = n(0);
+  r.q_rad = {n(1), n(2)};
+  r.qd_rad_s = {n(3), n(4)};
+  const long laser = csv_->integer(columns_[5]);
+  if (laser != 0 && laser != 1) csv_->fail(columns_[5], fmt::format("must be 0 or 1, got {}", laser));
+  r.laser_on = laser == 1;
+  r.target_m = Vec2(n(6), n(7)) * 1e-3;
+  r.command_m = Vec2(n(8), n(9)) * 1e-3;
+  r.force_N = {n(10), n(11)};
+  r.line = static_cast<int>(csv_->integer(columns_[12]));
+  if (read_ == 0) first_t_ = r.t_s;
+  if (read_ == 1 && r.t_s > first_t_) rate_hz_ = 1.0 / (r.t_s - first_t_);
+  ++read_;
+  return r;
+}
+
+std::optional<compensation::JointCommand> JointReader::next_binary() {
+  std::array<char, kBinaryRecordBytes> record{};
+  in_.read(record.data(), record.size());
+  const auto got = in_.gcount();
+  if (got == 0) {
+    if (read_ != expected_) {
+      throw Error(SourceLocation{path_}, fmt::format("header announces {} records, file holds {}", expected_, read_));
+    }
+    return std::nullopt;
+  }
+  if (got != static_cast<std::streamsize>(record.size())) {
+    throw Error(SourceLocation{path_}, fmt::format("record {} is truncated ({} of {} bytes)", read_ + 1, got,
+                                                   kBinaryRecordBytes));
+  }
+  const char* p = record.data();
+  compensation::JointCommand r;
+  double v[13];
+  for (double& x : v) x = get<double>(p);
+  for (double x : v) {
+    if (!std::isfinite(x)) throw Error(SourceLocation{path_}, fmt::format("record {} has a non-finite value", read_ + 1));
+  }
+  r.t_s = v[0];
+  r.q_rad = {v[1], v[2]};
+  r.qd_rad_s = {v[3], v[4]};
+  r.qdd_rad_s2 = {v[5], v[6]};
+  r.target_m = {v[7], v[8]};
+  r.command_m = {v[9], v[10]};
+  r.force_N = {v[11], v[12]};
+  r.line = get<std::int32_t>(p);
+  r.laser_on = get<std::uint8_t>(p) != 0;
+  ++read_;
+  return r;
+}
+
+}  // namespace stiffpath::job
