@@ -13,10 +13,11 @@
 #include <vector>
 
 #include "cam_program.hpp"
-#include "stiffpath/compensation/job.hpp"
-#include "stiffpath/compensation/joint_writer.hpp"
+#include "stiffpath/compensation/compensator.hpp"
 #include "stiffpath/compliance/model_factory.hpp"
-#include "stiffpath/kinematics/mechanism_spec.hpp"
+#include "stiffpath/job/job.hpp"
+#include "stiffpath/job/joint_writer.hpp"
+#include "stiffpath/kinematics/robot.hpp"
 #include "stiffpath/motion/profile.hpp"
 #include "stiffpath/motion/speed_change.hpp"
 #include "stiffpath/motion/trajectory_stream.hpp"
@@ -26,6 +27,7 @@ using namespace stiffpath::motion;
 namespace compensation = stiffpath::compensation;
 namespace compliance = stiffpath::compliance;
 namespace kinematics = stiffpath::kinematics;
+namespace job = stiffpath::job;
 
 // The solver's cases, each benchmarked on its own inputs (rest-to-rest and moving ends apart).
 enum class ProfileCase { cruise, both_trapezoids, two_triangles, triangle_trapezoid };
@@ -206,27 +208,27 @@ void BM_CamProgram(benchmark::State& state) {
 }
 BENCHMARK(BM_CamProgram)->ArgName("stage")->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
-void BM_CamRunJob(benchmark::State& state, compensation::OutputFormat format) {
+void BM_CamRunJob(benchmark::State& state, job::OutputFormat format) {
   const auto dir = std::filesystem::temp_directory_path();
-  const auto job = dir / fmt::format("stiffpath_bench_cam_{}.gcode", ::getpid());
+  const auto program = dir / fmt::format("stiffpath_bench_cam_{}.gcode", ::getpid());
   const auto out = dir / fmt::format("stiffpath_bench_cam_{}.out", ::getpid());
-  std::ofstream(job) << stiffpath::bench::cam_program(100000);
-  const auto spec = kinematics::load_mechanism("oc-gu");
+  std::ofstream(program) << stiffpath::bench::cam_program(100000);
+  const auto spec = kinematics::load_robot("oc-gu");
   const compensation::Compensator comp(spec, std::shared_ptr<const compliance::Model>(
                                                  compliance::load_model("thesis-oc").model.release()));
   for (auto _ : state) {
-    TrajectoryStream stream(job);
-    auto writer = compensation::make_joint_writer(format, out.string(), 2000.0, spec.name);
-    benchmark::DoNotOptimize(compensation::run_job(stream, comp, writer.get(), job.string(), 2000.0).samples);
+    TrajectoryStream stream(program);
+    auto writer = job::make_joint_writer(format, out.string(), 2000.0, spec.name);
+    benchmark::DoNotOptimize(job::run_job(stream, comp, writer.get(), program.string(), 2000.0).samples);
     writer.reset();
     state.PauseTiming();  // deleting the file (waiting for the disk to take its pages) is not part of the job
     std::filesystem::remove(out);
     state.ResumeTiming();
   }
-  std::filesystem::remove(job);
+  std::filesystem::remove(program);
 }
-BENCHMARK_CAPTURE(BM_CamRunJob, csv, compensation::OutputFormat::csv)->MeasureProcessCPUTime()->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_CamRunJob, binary, compensation::OutputFormat::binary)->MeasureProcessCPUTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_CamRunJob, csv, job::OutputFormat::csv)->MeasureProcessCPUTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_CamRunJob, binary, job::OutputFormat::binary)->MeasureProcessCPUTime()->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
