@@ -228,6 +228,12 @@ TEST(Contours, GearOutlineReachesItsFeedOnTheTipLands) {
   EXPECT_GT(tip_allowed, 0.070);
   EXPECT_GE(tip_fast, 0.99 * tip_allowed);
   EXPECT_GE(fast, 0.70 * allowed);
+
+  // The fillets that let it run keep the path within the program's G64 P0.01 of its chords.
+  const std::vector<Vec2> vertices = programmed_vertices(text.str());
+  double deviation = 0.0;
+  for (const Sample& s : sample_at_2khz(trajectory)) deviation = std::max(deviation, distance_to_polyline(s.position_m, vertices));
+  EXPECT_LE(deviation, 0.01e-3);
 }
 
 }  // namespace
