@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Time and peak memory of `stiffpath simulate` against the job's length: jobs of repeated small
+# Time (wall and CPU, medians) and peak memory of `stiffpath simulate` against the job's length: jobs of repeated small
 # triangles and lines (one laser stroke each, travel moves between) of about 10, 50, 200, 500 and
 # 3600 s of motion, planned at 3 g, simulated from their binary joint files.
 # Usage: scripts/simulate_scaling.sh [BUILD_DIR] [SECONDS ...]   (default build/release, all lengths)
@@ -30,9 +30,18 @@ for s in "${lengths[@]}"; do
   make_job "$s" > "$work/job_$s.gcode"
   "$bin" run "$work/job_$s.gcode" --accel 3g --format bin -o "$work/job_$s.bin" > /dev/null
   duration=$("$bin" simulate "$work/job_$s.bin" --json | /usr/bin/python3 -c 'import json,sys; print(json.load(sys.stdin)["duration_s"])')
-  hyperfine --runs "${RUNS:-3}" --warmup 1 --export-json "$work/h.json" "$bin simulate $work/job_$s.bin" > /dev/null
-  median=$(/usr/bin/python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["results"][0]["median"])' "$work/h.json")
-  rss=$( { /usr/bin/time -v "$bin" simulate "$work/job_$s.bin" > /dev/null; } 2>&1 | awk '/Maximum resident/ {print $6}')
-  printf "%6s s of motion: %8.3f s simulated, median %7.3f s (%5.2f ms per simulated s), peak RSS %7.1f MiB\n" \
-    "$s" "$duration" "$median" "$(echo "$median * 1000 / $duration" | bc -l)" "$(echo "$rss / 1024" | bc -l)"
+  for run in $(seq "${RUNS:-3}"); do
+    /usr/bin/time -f "%e %U %S %M" -a -o "$work/t_$s" "$bin" simulate "$work/job_$s.bin" > /dev/null
+  done
+  # Medians of wall and CPU (user + system) time over the runs, the largest peak RSS.
+  /usr/bin/python3 - "$s" "$duration" "$work/t_$s" <<'PY'
+import statistics, sys
+rows = [list(map(float, line.split())) for line in open(sys.argv[3]) if line.strip()]
+wall = statistics.median(r[0] for r in rows)
+cpu = statistics.median(r[1] + r[2] for r in rows)
+rss = max(r[3] for r in rows) / 1024
+duration = float(sys.argv[2])
+print(f"{sys.argv[1]:>5} s job ({duration:8.1f} s of motion): CPU {cpu:7.2f} s ({1e3 * cpu / duration:5.2f} ms per "
+      f"simulated s), wall {wall:7.2f} s, peak RSS {rss:6.1f} MiB ({len(rows)} runs)")
+PY
 done

@@ -19,7 +19,7 @@ namespace {
 struct SimulateArgs {
   std::string joints;
   std::string robot;  // default: the binary file's robot (a preset), else oc-gu
-  int sides = 1;
+  int sides = 0;  // 0: inferred per stroke from its commanded corners
   double perturbation = simulation::TrueComplianceOptions{}.perturbation;
   std::uint64_t seed = simulation::TrueComplianceOptions{}.seed;
   simulation::SimulationOptions sim;
@@ -123,7 +123,7 @@ void simulate(const SimulateArgs& a) {
     bool first = true;
     for (const auto& s : meter.strokes()) {
       nlohmann::json one{{"stroke", s.index + 1}, {"start_s", tidy(s.start_s)}, {"end_s", tidy(s.end_s)},
-                         {"marked_points", s.marked_points}};
+                         {"marked_points", s.marked_points}, {"sides", s.sides}};
       put_metrics(one, s.metrics, s.path_accuracy);
       if (!s.refusal.empty()) one["refusal"] = s.refusal;
       std::cout << (first ? "\n    " : ",\n    ") << one.dump();
@@ -163,8 +163,9 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_option("joints", a->joints, "Joint trajectory file (CSV or binary)")->required();
   add_robot_flag(cmd, a->robot)->description("Robot (preset or file) the joints were made for (default: the preset the file "
                                             "records, else oc-gu); its data give C_true");
-  cmd->add_option("--sides", a->sides, "Straight sides of each laser stroke: 1 (line) or 3 (triangle)")
-      ->check(CLI::Range(1, 12))->capture_default_str();
+  cmd->add_option("--sides", a->sides, "Straight sides of each laser stroke: 1 (line), 3 (triangle); 0 infers "
+                                      "them from the stroke's sharp corners")
+      ->check(CLI::Range(0, 12))->capture_default_str();
   cmd->add_option("--perturbation", a->perturbation, "Relative perturbation of C_true")
       ->check(CLI::Range(0.0, 0.5))->capture_default_str();
   cmd->add_option("--seed", a->seed, "Seed of the perturbation")->capture_default_str();

@@ -31,7 +31,7 @@ constexpr std::size_t kMaxCellChars = 1 + 309 + 1 + 9;
 // except that a negative value that rounds to zero is written without its sign ("0.000", not "-0.000").
 char* put_fixed(char* p, double value, int decimals) noexcept {
   char* end = std::to_chars(p, p + kMaxCellChars, value, std::chars_format::fixed, decimals).ptr;
-  if (value < 0.0 && value > -1.0 && std::all_of(p + 1, end, [](char c) { return c == '0' || c == '.'; })) {
+  if (std::signbit(value) && value > -1.0 && std::all_of(p + 1, end, [](char c) { return c == '0' || c == '.'; })) {
     std::memmove(p, p + 1, static_cast<std::size_t>(end - p - 1));
     --end;
   }

@@ -14,6 +14,9 @@ namespace stiffpath::simulation {
 
 namespace {
 
+// A command whose ends are closer than this is a closed path (m).
+constexpr double kClosedGap_m = 1e-6;
+
 // Fewer points than this in the mark (or two in the command) leave nothing to measure.
 std::string too_short(std::size_t marked, std::size_t commanded) {
   if (marked >= 4 && commanded >= 2) return {};
@@ -30,35 +33,41 @@ StrokeMetrics measure_stroke(std::span<const Vec2> marked, std::span<const Vec2>
     if (strict) throw Error("simulation: " + s.refusal);
     return s;
   }
-  evaluation::PathMetricsOptions options;
-  options.closure = sides >= 3 ? evaluation::Closure::closed : evaluation::Closure::open;
   RunMetrics& m = s.metrics;
-  try {
-    const auto mark = evaluation::measure_path(marked, sides, options);
-    const auto command = evaluation::measure_path(commanded, sides, options);
-    m.length_m = mark.length_m;
-    m.commanded_length_m = command.length_m;
-    m.length_error_m = mark.length_m - command.length_m;
-    m.deviation_area_m2 = mark.deviation_area_m2;
-    m.max_deviation_m = mark.max_deviation_m;
-    m.line_strokes = 1;
-  } catch (const Error& e) {
-    if (strict) throw;
-    s.refusal = fmt::format("not {} straight side{}: {}", sides, sides == 1 ? "" : "s", e.what());
-  }
-  const std::vector<Vec2> mark(marked.begin(), marked.end());
-  try {
-    m.path_accuracy_m = evaluation::iso9283_path_accuracy(commanded, {mark}).accuracy_m;
-    s.path_accuracy = true;
-  } catch (const Error&) {
-    if (strict) throw;
-  }
   try {
     for (const auto& corner : evaluation::iso9283_cornering(commanded, marked)) {
       ++m.corners;
       m.cornering_round_off_m = std::max(m.cornering_round_off_m, corner.round_off_m);
       m.cornering_overshoot_m = std::max(m.cornering_overshoot_m, corner.overshoot_m);
     }
+  } catch (const Error&) {
+    if (strict) throw;
+  }
+  // sides 0: as many straight sides as the command has sharp corners plus one, closed when the
+  // command ends where it started (a triangle: two interior corners, three sides).
+  const bool closes = (commanded.back() - commanded.front()).norm() < kClosedGap_m;
+  const int n_sides = sides > 0 ? sides : static_cast<int>(m.corners) + 1;
+  evaluation::PathMetricsOptions options;
+  options.closure = (sides > 0 ? sides >= 3 : closes && n_sides >= 3) ? evaluation::Closure::closed
+                                                                       : evaluation::Closure::open;
+  try {
+    const auto mark = evaluation::measure_path(marked, n_sides, options);
+    const auto command = evaluation::measure_path(commanded, n_sides, options);
+    m.length_m = mark.length_m;
+    m.commanded_length_m = command.length_m;
+    m.length_error_m = mark.length_m - command.length_m;
+    m.deviation_area_m2 = mark.deviation_area_m2;
+    m.max_deviation_m = mark.max_deviation_m;
+    m.line_strokes = 1;
+    s.sides = n_sides;
+  } catch (const Error& e) {
+    if (strict) throw;
+    s.refusal = fmt::format("not {} straight side{}: {}", n_sides, n_sides == 1 ? "" : "s", e.what());
+  }
+  const std::vector<Vec2> mark(marked.begin(), marked.end());
+  try {
+    m.path_accuracy_m = evaluation::iso9283_path_accuracy(commanded, {mark}).accuracy_m;
+    s.path_accuracy = true;
   } catch (const Error&) {
     if (strict) throw;
   }

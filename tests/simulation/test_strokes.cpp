@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
+#include <cmath>
 #include <sstream>
 
 #include "stiffpath/core/error.hpp"
@@ -67,11 +68,12 @@ TEST(Strokes, StrokesPartitionTheWholeMark) {
   EXPECT_LT(strokes[0].end_s, strokes[1].start_s);
   EXPECT_EQ(marked, whole.marked);
   EXPECT_EQ(commanded, whole.commanded);
-  // Each stroke's command runs from its line's start to its end (mm in the G-code).
-  EXPECT_NEAR((strokes[0].commanded.front() - Vec2(0.190, -0.040)).norm(), 0.0, 1e-9);
-  EXPECT_NEAR((strokes[0].commanded.back() - Vec2(0.230, -0.040)).norm(), 0.0, 1e-9);
-  EXPECT_NEAR((strokes[1].commanded.front() - Vec2(0.200, 0.020)).norm(), 0.0, 1e-9);
-  EXPECT_NEAR((strokes[1].commanded.back() - Vec2(0.200, 0.050)).norm(), 0.0, 1e-9);
+  // Each stroke's command runs from its line's start to its end (mm in the G-code), up to the distance
+  // covered within one 0.5 ms sample of a jerk-limited start (j·Δt³/6 ≈ 0.08 µm at 2 g).
+  EXPECT_NEAR((strokes[0].commanded.front() - Vec2(0.190, -0.040)).norm(), 0.0, 1e-6);
+  EXPECT_NEAR((strokes[0].commanded.back() - Vec2(0.230, -0.040)).norm(), 0.0, 1e-6);
+  EXPECT_NEAR((strokes[1].commanded.front() - Vec2(0.200, 0.020)).norm(), 0.0, 1e-6);
+  EXPECT_NEAR((strokes[1].commanded.back() - Vec2(0.200, 0.050)).norm(), 0.0, 1e-6);
 }
 
 TEST(Strokes, MeterSumsLengthsAndTakesTheLargestDeviations) {
@@ -133,6 +135,30 @@ TEST(Strokes, AStrokeThatIsNotTheGivenShapeIsRefusedNotMeasured) {
   EXPECT_EQ(total.line_strokes, 1U);
   EXPECT_EQ(total.length_m, meter.strokes()[0].metrics.length_m);
   EXPECT_TRUE(meter.strokes()[1].path_accuracy);  // AT_p needs no sides
+}
+
+// Without a number of sides each stroke is measured as its command's sharp corners plus one: the
+// triangle as three sides (closed), the line as one, with the numbers --sides would give each.
+TEST(Strokes, SidesAreInferredFromEachStrokesCorners) {
+  const auto robot = kinematics::load_robot("oc-gu");
+  const auto truth = make_true_compliance(robot);
+  const auto joints = joints_of(
+      "G21 G90 G61\nG0 X187.132 Y-60\nM3 S1000\nG1 X257.132 Y-60 F120000\nG1 X222.132 Y60\nG1 X187.132 Y-60\nM5\n"
+      "G0 X190 Y40\nM3 S1000\nG1 X230 Y40\nM5\n");
+  RunMeter inferred(0), triangle(3), line(1);
+  (void)simulate(source_of(joints), robot, truth, {}, [&](const Stroke& s) {
+    inferred.add(s);
+    triangle.add(s);
+    line.add(s);
+  });
+  ASSERT_EQ(inferred.strokes().size(), 2U);
+  EXPECT_EQ(inferred.strokes()[0].sides, 3);
+  EXPECT_EQ(inferred.strokes()[1].sides, 1);
+  EXPECT_EQ(inferred.strokes()[0].metrics.length_m, triangle.strokes()[0].metrics.length_m);
+  EXPECT_EQ(inferred.strokes()[0].metrics.max_deviation_m, triangle.strokes()[0].metrics.max_deviation_m);
+  EXPECT_EQ(inferred.strokes()[1].metrics.length_m, line.strokes()[1].metrics.length_m);
+  // The triangle's perimeter: 70 + 2·√(35² + 120²) = 320 mm.
+  EXPECT_NEAR(inferred.strokes()[0].metrics.commanded_length_m, 0.070 + 2 * std::hypot(0.035, 0.120), 5e-6);
 }
 
 TEST(Strokes, AJobThatNeverFiresTheLaserHasNothingToMeasure) {

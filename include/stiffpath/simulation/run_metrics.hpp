@@ -37,6 +37,7 @@ struct StrokeMetrics {
   //! that is not `sides` straight sides); empty when `metrics`' line fields are valid.
   std::string refusal;
   bool path_accuracy = false;         //!< whether metrics.path_accuracy_m was measured (a normal plane crossed the mark)
+  int sides = 0;                      //!< straight sides the line metrics were measured as (0 when refused)
   RunMetrics metrics;                 //!< this stroke's numbers (residual vibration and peak deflection: 0)
 };
 
@@ -46,7 +47,9 @@ struct StrokeMetrics {
 //! A one-stroke job gives exactly measure_run's numbers.
 class RunMeter {
  public:
-  //! `sides`: straight sides of every stroke (1: a line, 3: a triangle); `keep_strokes`: how many
+  //! `sides`: straight sides of every stroke (1: a line, 3: a triangle), or 0: each stroke's sharp
+  //! corners (iso9283_cornering on its command) plus one, closed when the command returns to its
+  //! start; `keep_strokes`: how many
   //! StrokeMetrics to keep for strokes() (the totals always cover all).
   explicit RunMeter(int sides, std::size_t keep_strokes = 100000);
   //! Measures one stroke and folds it into the totals.
