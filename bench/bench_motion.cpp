@@ -218,7 +218,7 @@ void BM_CamRunJob(benchmark::State& state, job::OutputFormat format) {
                                                  compliance::load_model("thesis-oc").model.release()));
   for (auto _ : state) {
     TrajectoryStream stream(program);
-    auto writer = job::make_joint_writer(format, out.string(), 2000.0, spec.name);
+    auto writer = job::make_joint_writer(format, out.string(), 2000.0, {spec.name, spec.geometry_hash()});
     benchmark::DoNotOptimize(job::run_job(stream, comp, writer.get(), program.string(), 2000.0).samples);
     writer.reset();
     state.PauseTiming();  // deleting the file (waiting for the disk to take its pages) is not part of the job

@@ -74,7 +74,8 @@ void run(const RunArgs& a) {
   motion::TrajectoryStream stream(a.job, options);
   std::unique_ptr<job::JointWriter> writer;
   if (!a.output.empty()) {
-    writer = job::make_joint_writer(job::parse_output_format(a.format), a.output, options.rate_hz, robot.name);
+    writer = job::make_joint_writer(job::parse_output_format(a.format), a.output, options.rate_hz,
+                                     {robot.name, robot.geometry_hash()});
   }
   const auto progress = progress_bar(a.job);
   const job::JobSummary s = job::run_job(stream, compensator, writer.get(), a.job, options.rate_hz, acceleration, progress);

@@ -61,6 +61,7 @@ JointCommand Compensator::step(const TaskSample& s) const noexcept {
   c.t_s = s.t_s;
   c.target_m = s.position_m;
   c.laser_on = s.laser_on;
+  c.power = s.power;
   c.line = s.line;
   if (!finite(s.position_m) || !finite(s.velocity_m_s) || !finite(s.acceleration_m_s2) || !finite(s.jerk_m_s3) ||
       !finite(s.snap_m_s4)) {

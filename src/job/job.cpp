@@ -27,6 +27,7 @@ TaskSample to_task_sample(const motion::TrajectorySample& s) noexcept {
   t.acceleration_m_s2 = s.acceleration_m_s2;
   t.jerk_m_s3 = s.jerk_m_s3;
   t.laser_on = s.laser_on;
+  t.power = s.power;
   t.line = s.line;
   return t;
 }

@@ -1,6 +1,8 @@
 // A user's own asymmetric five-bar end to end: fit → cv → predict → run → simulate → experiment on its geometry and data.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -34,6 +36,7 @@ std::vector<std::vector<std::string>> read_csv(const std::filesystem::path& path
   std::ifstream in(path);
   std::vector<std::vector<std::string>> rows;
   for (std::string line; std::getline(in, line);) {
+    if (line.starts_with("#")) continue;  // a joint file's robot comment
     std::vector<std::string> cells;
     std::stringstream ss(line);
     for (std::string c; std::getline(ss, c, ',');) cells.push_back(c);
@@ -105,13 +108,15 @@ TEST(CliOwnRobot, RunCompensatesWithTheRobotsMassGeometryAndData) {
   EXPECT_NEAR(s["peak_force_n"].get<double>(), 2.2 * 5 * kG, 1e-6);
   const auto rows = read_csv(w.dir / "joints.csv");
   ASSERT_GT(rows.size(), 100U);
-  // t_s,theta1_rad,theta2_rad,omega1_rad_s,omega2_rad_s,laser,x_mm,y_mm,xcmd_mm,ycmd_mm,fx_n,fy_n,line
   ASSERT_EQ(rows[0][1], "theta1_rad");
+  const auto col = [&rows](const std::string& name) {
+    return static_cast<std::size_t>(std::find(rows[0].begin(), rows[0].end(), name) - rows[0].begin());
+  };
   double checked = 0;
   for (std::size_t k = 1; k < rows.size(); k += 7) {
-    const V2 p(std::stod(rows[k][6]) * 1e-3, std::stod(rows[k][7]) * 1e-3);
-    const V2 cmd(std::stod(rows[k][8]) * 1e-3, std::stod(rows[k][9]) * 1e-3);
-    const V2 F(std::stod(rows[k][10]), std::stod(rows[k][11]));
+    const V2 p(std::stod(rows[k][col("x_mm")]) * 1e-3, std::stod(rows[k][col("y_mm")]) * 1e-3);
+    const V2 cmd(std::stod(rows[k][col("xcmd_mm")]) * 1e-3, std::stod(rows[k][col("ycmd_mm")]) * 1e-3);
+    const V2 F(std::stod(rows[k][col("fx_n")]), std::stod(rows[k][col("fy_n")]));
     // p_cmd = p − C(p)·F with the robot's own field (fitted from its table, so equal to the known one) …
     const V2 expected = p - known_compliance(kRobot, p) * F;
     EXPECT_LT((cmd - expected).norm(), 2e-9 + 2e-3 * (known_compliance(kRobot, p) * F).norm()) << k;

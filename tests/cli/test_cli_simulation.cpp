@@ -68,18 +68,22 @@ TEST(CliSimulate, MarkRenderedAsAScanMeasuresTheSameLength) {
   EXPECT_TRUE(measured["warnings"].empty()) << measured["warnings"];
 }
 
-// A CAM job's lettering has sharp turns between pieces far shorter than the tip's deflection; the
-// mark misses some of them, which the cornering metrics report instead of failing the simulation.
-TEST(CliSimulate, RealisticJobWithTinyCornersIsMeasured) {
+// A CAM job's lettering is many strokes: each is measured on its own (the travel moves between them
+// are no longer corners of one path), and AT_p stays within the tip's deflection.
+TEST(CliSimulate, RealisticJobIsMeasuredStrokeByStroke) {
   TempDir dir;
   const std::string job = std::string(STIFFPATH_SOURCE_DIR) + "/examples/nameplate.gcode";
   ASSERT_EQ(run_cli("run " + job + " -o j.csv --accel 2g", dir.path()).exit_code, 0);
   const auto sim = run_cli("simulate j.csv --json", dir.path());
   ASSERT_EQ(sim.exit_code, 0) << sim.err;
   const auto m = nlohmann::json::parse(sim.out);
-  EXPECT_GT(m["corners"].get<int>(), 10);
-  EXPECT_GT(m["cornering_round_off_mm"].get<double>(), 0.0);
-  EXPECT_LT(m["cornering_round_off_mm"].get<double>(), 1.0);
+  EXPECT_GT(m["strokes"].get<int>(), 10);
+  EXPECT_EQ(m["stroke_metrics"].size(), m["strokes"].get<std::size_t>());
+  std::size_t marked = 0;
+  for (const auto& s : m["stroke_metrics"]) marked += s["marked_points"].get<std::size_t>();
+  EXPECT_EQ(marked, m["marked_points"].get<std::size_t>());
+  EXPECT_GT(m["path_accuracy_mm"].get<double>(), 0.0);
+  EXPECT_LT(m["path_accuracy_mm"].get<double>(), 1.0);
 }
 
 TEST(CliSimulate, BadFileIsAnError) {

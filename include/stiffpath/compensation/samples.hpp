@@ -19,6 +19,7 @@ struct TaskSample {
   Vec2 jerk_m_s3 = Vec2::Zero();          //!< feeds the commanded velocity's correction term
   Vec2 snap_m_s4 = Vec2::Zero();          //!< d⁴p/dt⁴; zero inside every jerk-limited phase
   bool laser_on = false;
+  double power = 0.0;                     //!< laser power, fraction of full power 0..1 (0 when off)
   int line = 0;                           //!< source G-code line
 };
 
@@ -50,6 +51,7 @@ struct JointCommand {
   int joint = -1;                      //!< offending joint (0, 1) for joint_* statuses
   bool outside_grid = false;           //!< p was outside the model's grid (clamped or extrapolated)
   bool laser_on = false;
+  double power = 0.0;                  //!< laser power, fraction of full power 0..1 (passed through)
   int line = 0;
 };
 
