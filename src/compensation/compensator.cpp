@@ -192,8 +192,9 @@ JointCommand Compensator::step_unchecked(const TaskSample& s) const noexcept {
       pd_cmd += k * (rate - times(T_dot, rate) - T_curvature + TT_third);
       pdd_cmd += k * (curvature - times(T_ddot, rate) - 2.0 * times(T_dot, curvature) - T_third);
     } else {
-      pd_cmd += k * rate;
-      pdd_cmd += k * curvature;
+      // The thesis's step, in its original order of operations (k·m·(…)), so its commands stay bit-identical.
+      pd_cmd += k * m * (times(C, s.jerk_m_s3) + times(C_dot, s.acceleration_m_s2));
+      pdd_cmd += k * m * (times(C, s.snap_m_s4) + 2.0 * times(C_dot, s.jerk_m_s3) + times(C_ddot, s.acceleration_m_s2));
     }
   }
 
