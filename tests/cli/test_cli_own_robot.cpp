@@ -99,7 +99,7 @@ TEST(CliOwnRobot, RunCompensatesWithTheRobotsMassGeometryAndData) {
   const Workspace w;
   // A y line through the middle of the measured rectangle at 5 g.
   write_text(w.dir / "job.gcode", "G21 G90\nG0 X10 Y175\nM3 S100\nG1 Y245 F120000\nM5\n");
-  const CliResult r = w.run("run job.gcode --robot robot.json --accel 5g -o joints.csv --json");
+  const CliResult r = w.run("run job.gcode --robot robot.json --accel 5g -o joints.csv --json --compensation quasi-static --smooth-ms 0");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto s = r.json();
   EXPECT_EQ(s["robot"], "asym");

@@ -96,7 +96,7 @@ TEST(CliThesisRegression, JointFilesOfEveryExampleAreBitIdentical) {
   int checked = 0;
   for (std::string name, tag, hash; in >> name >> tag >> hash;) {
     const auto job = kExamples / (name + ".gcode");
-    const std::string run = "run '" + job.string() + "' --accel 5g ";
+    const std::string run = "run '" + job.string() + "' --accel 5g --compensation quasi-static --smooth-ms 0 ";
     const CliResult r = run_cli(run + (tag == "csv" ? "--format bin" : flags_of(tag)) + " -o j", dir.path());
     ASSERT_EQ(r.exit_code, 0) << name << ' ' << tag << ": " << r.err;
     if (tag == "csv") {  // the same job as tag "bin", whose binary file the hash there pins
@@ -167,8 +167,8 @@ const std::string kOldTwin = "--truth physical --servo ideal --no-cg-lever";
 TEST(CliThesisRegression, TheTwinMeasuresTheSameMarks) {
   TempDir dir;
   const auto example = [](const char* name) { return "'" + (kExamples / name).string() + "'"; };
-  ASSERT_EQ(run_cli("run " + example("y_motion.gcode") + " --accel 5g --format bin -o y.bin", dir.path()).exit_code, 0);
-  ASSERT_EQ(run_cli("run " + example("triangle.gcode") + " --accel 3g --format bin --robot sc-gu --no-compensation -o t.bin",
+  ASSERT_EQ(run_cli("run " + example("y_motion.gcode") + " --accel 5g --compensation quasi-static --smooth-ms 0 --format bin -o y.bin", dir.path()).exit_code, 0);
+  ASSERT_EQ(run_cli("run " + example("triangle.gcode") + " --accel 3g --smooth-ms 0 --format bin --robot sc-gu --no-compensation -o t.bin",
                     dir.path())
                 .exit_code,
             0);
