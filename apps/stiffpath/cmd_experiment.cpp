@@ -5,7 +5,9 @@
 #include <fmt/ranges.h>
 #include <memory>
 
+#include "bounded.hpp"
 #include "commands.hpp"
+#include "stiffpath/core/output_budget.hpp"
 #include "stiffpath/core/atomic_file.hpp"
 #include "stiffpath/report/experiment_plots.hpp"
 #include "stiffpath/report/gnuplot.hpp"
@@ -25,11 +27,11 @@ struct ExperimentArgs {
 void experiment(ExperimentArgs a) {
   for (const auto& path : a.paths) a.options.paths.push_back(simulation::user_motion(path));
   if (!a.paths.empty() && !a.motions_given) a.options.motions.clear();  // only the user's paths
+  core::ensure_output_directory(a.output);  // before the runs, not after them
   const auto start = std::chrono::steady_clock::now();
   const auto results = simulation::run_experiment(a.options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::filesystem::path dir(a.output);
-  std::filesystem::create_directories(dir);
   core::write_file_atomically(dir / "results.csv", simulation::experiment_csv(results));
   const std::string summary = simulation::experiment_summary(results);
   core::write_file_atomically(dir / "summary.md", summary);
@@ -56,13 +58,13 @@ void add_experiment_command(CLI::App& app) {
   cmd->add_option("--path", a->paths, "A G-code file of your own to run as FILE[:SIDES] (repeatable; without "
                                       "--motions only these run)");
   cmd->add_option("--accelerations-g", a->options.accelerations_g, "Acceleration limits (g)")
-      ->check(CLI::Range(0.1, 10.0))->capture_default_str();
+      ->check(within(0.1, 10.0, "g"))->capture_default_str();
   cmd->add_option("--perturbation", a->options.truth.perturbation, "Relative perturbation of C_true")
-      ->check(CLI::Range(0.0, 0.5))->capture_default_str();
-  cmd->add_option("--gain", a->options.compensator.gain, "Compensation gain")->check(CLI::NonNegativeNumber)
+      ->check(within(0.0, 0.5, ""))->capture_default_str();
+  cmd->add_option("--gain", a->options.compensator.gain, "Compensation gain")->check(within(0.0, 10.0, ""))
       ->capture_default_str();
   cmd->add_option("--damping-ratio", a->options.simulation.plant.tip_damping_ratio, "Damping ratio of the tip's modes")
-      ->check(CLI::Range(0.0, 2.0))->capture_default_str();
+      ->check(within(0.0, 2.0, ""))->capture_default_str();
   cmd->add_flag("--no-plots", a->no_plots, "Skip the gnuplot figures");
   cmd->callback([a, motions] {
     a->motions_given = motions->count() > 0;

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <memory>
 
+#include "bounded.hpp"
 #include "commands.hpp"
 #include "robot_flags.hpp"
 #include "stiffpath/core/error.hpp"
@@ -108,14 +109,14 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_option("--sides", a->sides, "Straight sides of the path: 1 (line) or 3 (triangle)")
       ->check(CLI::Range(1, 12))->capture_default_str();
   cmd->add_option("--perturbation", a->perturbation, "Relative perturbation of C_true")
-      ->check(CLI::Range(0.0, 0.5))->capture_default_str();
+      ->check(within(0.0, 0.5, ""))->capture_default_str();
   cmd->add_option("--seed", a->seed, "Seed of the perturbation")->capture_default_str();
   cmd->add_option("--damping-ratio", a->sim.plant.tip_damping_ratio, "Damping ratio of the tip's modes")
-      ->check(CLI::Range(0.0, 2.0))->capture_default_str();
+      ->check(within(0.0, 2.0, ""))->capture_default_str();
   cmd->add_option("--servo-bandwidth-hz", a->sim.plant.servo_bandwidth_hz, "Joint position-loop bandwidth")
-      ->check(CLI::PositiveNumber)->capture_default_str();
+      ->check(within(0.01, 1e5, "Hz"))->capture_default_str();
   cmd->add_option("--step-rate-hz", a->sim.plant.step_rate_hz, "Integration rate")
-      ->check(CLI::Range(1000.0, 1e7))->capture_default_str();
+      ->check(within(1000.0, 1e7, "Hz"))->capture_default_str();
   cmd->add_option("--marks-csv", a->marks_csv, "Also write the mark (x_mm, y_mm, y down) for `render-scan --path-csv`");
   cmd->add_flag("--json", a->json, "Print the metrics as JSON");
   cmd->callback([a] { simulate(*a); });
