@@ -10,6 +10,9 @@
 namespace stiffpath::core {
 
 namespace {
+// Largest magnitude of a number field (number() and what builds on it), as for CSV files (csv.hpp).
+constexpr double max_json_magnitude = 1e12;
+
 // Converts a byte offset into a 1-based line and column.
 SourceLocation locate(std::string_view text, std::size_t byte, const std::string& label) {
   SourceLocation where{label, 1, 1};
@@ -148,6 +151,7 @@ double JsonObject::number(std::string_view key) const {
   if (!v.is_number()) fail(key, "must be a number, got " + type_name(v) + " " + v.dump());
   const double x = v.get<double>();
   if (!std::isfinite(x)) fail(key, "must be finite");
+  if (std::abs(x) > max_json_magnitude) fail(key, "RANGE: " + v.dump() + " is beyond ±1e12, larger than any quantity a stiffpath file holds");
   return x;
 }
 

@@ -21,7 +21,7 @@ struct Subcommand {
 
 // Quick valid invocations; the swept option is appended (CLI11 takes the last value of a repeated option).
 const Subcommand subcommands[] = {
-    {"kin fk", "--theta1-deg -30 --theta2-deg 60"},
+    {"kin fk", "--theta1-deg 60 --theta2-deg -30"},
     {"kin ik", "--x-mm 222 --y-mm 10"},
     {"predict", "--x-mm 222 --y-mm 10 --fx-n 100 --fy-n -50"},
     {"plan", "job.gcode"},
@@ -33,7 +33,7 @@ const Subcommand subcommands[] = {
     {"measure", "campaign.csv -o table.csv"},
     {"data check", ""},
     {"repeatability", "thesis"},
-    {"render-scan", "-o scan.png --length-mm 10 --dpi 300"},
+    {"render-scan", "scan.png --length-mm 10 --dpi 300"},
     {"scan", "scan.png"},
     {"mobility", ""},
 };
@@ -48,7 +48,7 @@ const fs::path& prepared() {
   if (!ready) {
     write_text(dir / "job.gcode", "G0 X200 Y0\nM3 S500\nG1 X210 Y5 F3000\nM5\n");
     for (const char* setup : {"run job.gcode -o joints.csv", "campaign simulate -o campaign.csv",
-                              "render-scan -o scan.png --length-mm 10 --dpi 300"}) {
+                              "render-scan scan.png --length-mm 10 --dpi 300"}) {
       const CliResult r = run_cli(setup, dir.path());
       if (r.exit_code != 0) ADD_FAILURE() << setup << ": " << r.err;
     }

@@ -93,7 +93,7 @@ def position(text, needle, occurrence=1):
     return f"{line}:{at - (text.rfind(chr(10), 0, at) + 1) + 1}"
 
 
-def json_cases(reader, base_text, key, bad_number):
+def json_cases(reader, base_text, key, bad_number, named=None):
     expect[reader] = []
     # A key given twice: the second one is refused, at its own position.
     lines = base_text.split("\n")
@@ -106,12 +106,13 @@ def json_cases(reader, base_text, key, bad_number):
     text = base_text.replace(lines[i], lines[i].replace(v, "1e400", 1), 1)
     write(reader, "number_1e400.json", text, position(text, "1e400"), "1e400")
     text = base_text.replace(lines[i], lines[i].replace(v, bad_number, 1), 1)
-    write(reader, f"{key}_{bad_number.replace('-', 'minus')}.json", text, position(text, f'"{key}"'), bad_number)
+    write(reader, f"{key}_{bad_number.replace('-', 'minus')}.json", text, position(text, f'"{key}"'), named or bad_number)
 
 
 def robots():
     with open(os.path.join(here, "..", "..", "..", "data", "robots", "oc-gu.json")) as f:
-        json_cases("robot", f.read(), "moving_mass_kg", "1e300")
+        # Its data by their built-in names, so the copy in tests/data/bad/robot/ finds them.
+        json_cases("robot", f.read().replace('"../thesis/', '"builtin:thesis/'), "moving_mass_kg", "1e300", "RANGE: 1e+300")
 
 
 def model(cli, tmp):
@@ -119,9 +120,13 @@ def model(cli, tmp):
     subprocess.run([cli, "fit", "-o", path], check=True, stdout=subprocess.DEVNULL)
     with open(path) as f:
         text = f.read()
-    key = next(l.strip().split('"')[1] for l in text.split("\n") if l.strip().startswith('"') and
-               l.split(":", 1)[1].strip().rstrip(",").replace(".", "").replace("-", "").isdigit())
-    json_cases("model", text, key, "1e300")
+    json_cases("model", text, "order", "1e300", "RANGE: 1e+300")
+    # A coefficient of 1e300: the compliance it gives over the measured region is refused at D_um_per_N.
+    first = text.index("[", text.index('"D_um_per_N"') + 15) + 1
+    value_at = first + len(text[first:]) - len(text[first:].lstrip())
+    end = text.index(",", value_at)
+    bad = text[:value_at] + "1e300" + text[end:]
+    write("model", "compliance_1e300.json", bad, position(bad, '"D_um_per_N"'), "RANGE: the model's compliance")
 
 
 def joints(cli, tmp):
