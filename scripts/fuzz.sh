@@ -20,7 +20,7 @@ seeds() {
     joint_file) echo tests/data/fuzz_seeds/joint_file tests/data/bad/joints ;;
     robot_json) echo data/robots tests/data/robots tests/data/bad/robot ;;
     model_json) echo tests/data/fuzz_seeds/model_json tests/data/bad/model ;;
-    image_metadata) echo tests/data/fuzz_seeds/image_metadata tests/data/bad/image ;;
+    image_metadata) echo tests/data/fuzz_seeds/image_metadata tests/data/fuzz_regressions/image_metadata tests/data/bad/image ;;
   esac
 }
 

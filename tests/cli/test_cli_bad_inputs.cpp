@@ -2,7 +2,9 @@
 // refused with exit 2 and a message naming its location and offending value, and no output file appears.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <regex>
 #include <sstream>
@@ -11,6 +13,7 @@
 
 #include "cli_runner.hpp"
 #include "gcode_corpus.hpp"
+#include "stiffpath/vision/resolution.hpp"
 
 namespace fs = std::filesystem;
 using namespace stiffpath::test;
@@ -111,6 +114,26 @@ TEST(BadInputs, GcodeCorpusThroughRun) {
     EXPECT_NE(r.err.find("error: " + c.expected.front()), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(dir / "out.csv"));
   }
+}
+
+}  // namespace
+
+namespace {
+
+// Inputs the fuzzers found (tests/data/fuzz_regressions/<harness>/), replayed on every build: each once
+// crashed or tripped a sanitizer. An empty JPEG segment made the in-memory reader call memcpy with a
+// null destination (UBSan); the result, if any, must be a positive finite resolution.
+TEST(FuzzRegressions, ImageMetadataInputsParseWithoutUndefinedBehaviour) {
+  const fs::path dir = fs::path(STIFFPATH_TEST_DATA_DIR) / "fuzz_regressions" / "image_metadata";
+  std::size_t count = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    std::ifstream in(entry.path(), std::ios::binary);
+    const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const auto r = stiffpath::vision::resolution_from_memory(bytes);
+    if (r) EXPECT_TRUE(std::isfinite(r->dpi_x) && r->dpi_x > 0 && std::isfinite(r->dpi_y) && r->dpi_y > 0) << entry.path();
+    ++count;
+  }
+  EXPECT_GE(count, 1u);
 }
 
 }  // namespace
