@@ -88,7 +88,9 @@ TEST_P(BadInputs, EveryFileIsRefusedAtItsLocationNamingTheValueAndWritesNothing)
     EXPECT_NE(r.err.find(located), std::string::npos) << "expected '" << located << "' in:\n" << r.err;
     EXPECT_NE(r.err.find(c.value), std::string::npos) << "expected '" << c.value << "' in:\n" << r.err;
     EXPECT_EQ(r.err.find("internal"), std::string::npos) << r.err;
-    if (*reader.output) EXPECT_FALSE(fs::exists(dir / reader.output));
+    if (*reader.output) {
+      EXPECT_FALSE(fs::exists(dir / reader.output));
+    }
     for (const auto& entry : fs::directory_iterator(dir.path())) {
       EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
     }
@@ -96,7 +98,7 @@ TEST_P(BadInputs, EveryFileIsRefusedAtItsLocationNamingTheValueAndWritesNothing)
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryReader, BadInputs, ::testing::ValuesIn(readers),
-                         [](const auto& info) { return std::string(info.param.folder); });
+                         [](const auto& param_info) { return std::string(param_info.param.folder); });
 
 // The G-code corpus (tests/data/bad/gcode is tests/data/gcode_bad) through `run`: the first refusal of each
 // file, exit 2, no joint file.

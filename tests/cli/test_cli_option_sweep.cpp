@@ -133,8 +133,8 @@ TEST_P(OptionSweep, AbsurdNumbersAreRefusedByNameOrGiveFiniteResults) {
 }
 
 INSTANTIATE_TEST_SUITE_P(EverySubcommand, OptionSweep, ::testing::ValuesIn(subcommands),
-                         [](const auto& info) {
-                           std::string name = info.param.name;
+                         [](const auto& param_info) {
+                           std::string name = param_info.param.name;
                            for (char& c : name) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
                            return name;
                          });
