@@ -27,11 +27,12 @@ struct ExperimentArgs {
 void experiment(ExperimentArgs a) {
   for (const auto& path : a.paths) a.options.paths.push_back(simulation::user_motion(path));
   if (!a.paths.empty() && !a.motions_given) a.options.motions.clear();  // only the user's paths
-  core::ensure_output_directory(a.output);  // before the runs, not after them
+  core::check_output_directory(a.output);  // before the runs, not after them (nothing is created yet)
   const auto start = std::chrono::steady_clock::now();
   const auto results = simulation::run_experiment(a.options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::filesystem::path dir(a.output);
+  core::create_output_directory(dir);
   core::write_file_atomically(dir / "results.csv", simulation::experiment_csv(results));
   const std::string summary = simulation::experiment_summary(results);
   core::write_file_atomically(dir / "summary.md", summary);

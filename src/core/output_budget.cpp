@@ -41,19 +41,26 @@ void check_free_space(const fs::path& output, double bytes, const std::string& h
                           human_bytes(available), how_to_raise));
 }
 
-void ensure_output_directory(const fs::path& dir) {
+void check_output_directory(const fs::path& dir) {
   std::error_code ec;
-  const auto status = fs::status(dir, ec);
-  if (fs::exists(status) && !fs::is_directory(status)) {
-    throw Error(SourceLocation{dir.string()}, "exists and is not a directory (an output directory is needed here)");
+  fs::path existing = fs::absolute(dir, ec);
+  while (!fs::exists(fs::status(existing, ec)) && existing.has_parent_path() && existing != existing.parent_path()) {
+    existing = existing.parent_path();
   }
-  if (!fs::exists(status)) {
-    fs::create_directories(dir, ec);
-    if (ec) throw Error(SourceLocation{dir.string()}, "cannot create the output directory: " + ec.message());
+  if (!fs::is_directory(fs::status(existing, ec))) {
+    throw Error(SourceLocation{dir.string()}, "'" + existing.string() + "' exists and is not a directory (an output directory is needed here)");
   }
-  if (::access(dir.c_str(), W_OK | X_OK) != 0) {
-    throw Error(SourceLocation{dir.string()}, "cannot write into the output directory: " + std::error_code(errno, std::generic_category()).message());
+  if (::access(existing.c_str(), W_OK | X_OK) != 0) {
+    throw Error(SourceLocation{dir.string()},
+                "cannot write into '" + existing.string() + "': " + std::error_code(errno, std::generic_category()).message());
   }
+}
+
+void create_output_directory(const fs::path& dir) {
+  check_output_directory(dir);
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw Error(SourceLocation{dir.string()}, "cannot create the output directory: " + ec.message());
 }
 
 }  // namespace stiffpath::core

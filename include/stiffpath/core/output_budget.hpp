@@ -18,9 +18,11 @@ namespace stiffpath::core {
 //! Nothing is checked for "-" (stdout), FIFOs or devices, or when the free space is unknown.
 void check_free_space(const std::filesystem::path& output, double bytes, const std::string& how_to_raise);
 
-//! Makes sure `dir` is a directory we can write into (creating it and its parents if needed), before
-//! any long work whose results go there. Throws stiffpath::Error naming the path and the reason (a
-//! file in the way, no permission, read-only file system).
-void ensure_output_directory(const std::filesystem::path& dir);
+//! Checks, without creating anything, that `dir` is or can become a directory we write into (its
+//! nearest existing ancestor is a writable directory), before long work whose results go there.
+//! Throws stiffpath::Error naming the path and the reason (a file in the way, no permission).
+void check_output_directory(const std::filesystem::path& dir);
+//! check_output_directory, then creates `dir` and its parents; errors as stiffpath::Error.
+void create_output_directory(const std::filesystem::path& dir);
 
 }  // namespace stiffpath::core
