@@ -6,7 +6,9 @@
 #include <fmt/ranges.h>
 #include <memory>
 
+#include "bounded.hpp"
 #include "commands.hpp"
+#include "stiffpath/core/output_budget.hpp"
 #include "stiffpath/core/atomic_file.hpp"
 #include "stiffpath/report/experiment_plots.hpp"
 #include "stiffpath/report/gnuplot.hpp"
@@ -37,9 +39,10 @@ void robustness(ExperimentArgs& a, const std::filesystem::path& dir) {
   fmt::print("robustness: {} runs on {} at {:g} g ({} seeds)\n", runs, a.robust.robot, a.robust.acceleration_g,
              a.robust.seeds);
   const auto start = std::chrono::steady_clock::now();
+  core::check_output_directory(a.output);  // before the runs, not after them
   const auto rows = simulation::run_robustness(a.robust);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::filesystem::create_directories(dir);
+  core::create_output_directory(dir);
   core::write_file_atomically(dir / "robustness.tsv", simulation::robustness_tsv(rows));
   const std::string table = simulation::robustness_markdown(rows);
   core::write_file_atomically(dir / "robustness.md", table);
@@ -62,10 +65,11 @@ void experiment(ExperimentArgs a) {
   }
   for (const auto& path : a.paths) a.options.paths.push_back(simulation::user_motion(path));
   if (!a.paths.empty() && !a.motions_given) a.options.motions.clear();  // only the user's paths
+  core::check_output_directory(a.output);  // before the runs, not after them (nothing is created yet)
   const auto start = std::chrono::steady_clock::now();
   const auto results = simulation::run_experiment(a.options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::filesystem::create_directories(dir);
+  core::create_output_directory(dir);
   core::write_file_atomically(dir / "results.csv", simulation::experiment_csv(results));
   const std::string summary = simulation::experiment_summary(results);
   core::write_file_atomically(dir / "summary.md", summary);
@@ -97,11 +101,11 @@ void add_experiment_command(CLI::App& app) {
   cmd->add_option("--path", a->paths, "A G-code file of your own to run as FILE[:SIDES] (repeatable; without "
                                       "--motions only these run)");
   cmd->add_option("--accelerations-g", a->options.accelerations_g, "Acceleration limits (g)")
-      ->check(CLI::Range(0.1, 10.0))->capture_default_str();
+      ->check(within(0.1, 10.0, "g"))->capture_default_str();
   cmd->add_option("--variants", a->options.variants, "Compensations besides none: thesis (quasi-static bilinear), "
                                                      "default (what `run` does)")
       ->check(CLI::IsMember({"thesis", "default"}))->capture_default_str();
-  cmd->add_option("--gain", a->options.compensator.gain, "Compensation gain")->check(CLI::NonNegativeNumber)
+  cmd->add_option("--gain", a->options.compensator.gain, "Compensation gain")->check(within(0.0, 10.0, ""))
       ->capture_default_str();
   add_twin_flags(cmd, a->twin, a->options.simulation, a->options.truth);
   cmd->add_flag("--oracle-model", a->options.oracle_model,
@@ -114,17 +118,17 @@ void add_experiment_command(CLI::App& app) {
       ->check(CLI::Range(1, 100))->capture_default_str();
   cmd->add_option("--robust-motions", a->robust.motions, "Robustness: motions")->capture_default_str();
   cmd->add_option("--robust-accel-g", a->robust.acceleration_g, "Robustness: acceleration limit (g)")
-      ->check(CLI::Range(0.1, 10.0))->capture_default_str();
+      ->check(within(0.1, 10.0, "g"))->capture_default_str();
   cmd->add_option("--robust-variants", a->robust.variants, "Robustness: without, thesis, default")
       ->check(CLI::IsMember({"without", "thesis", "default"}))->capture_default_str();
   cmd->add_option("--damping-ratios", a->robust.damping_ratios, "Robustness: tip damping ratios")
-      ->check(CLI::Range(0.0, 2.0))->capture_default_str();
+      ->check(within(0.0, 2.0, ""))->capture_default_str();
   cmd->add_option("--mass-errors", a->robust.mass_errors, "Robustness: plant mass errors (fraction)")
-      ->check(CLI::Range(-0.5, 1.0))->capture_default_str();
+      ->check(within(-0.5, 1.0, ""))->capture_default_str();
   cmd->add_option("--servo-bandwidths-hz", a->robust.servo_bandwidths_hz, "Robustness: servo bandwidths (Hz)")
-      ->check(CLI::Range(1.0, 2000.0))->capture_default_str();
+      ->check(within(1.0, 2000.0, ""))->capture_default_str();
   cmd->add_option("--noise-um", a->robust.noise_sigmas_um, "Robustness: campaign noise sigma per coordinate (um)")
-      ->check(CLI::Range(0.0, 1000.0))->capture_default_str();
+      ->check(within(0.0, 1000.0, ""))->capture_default_str();
   cmd->add_option("--max-runs", a->robust.max_runs, "Robustness: refuse sweeps with more runs")
       ->check(CLI::Range(1, 100000))->capture_default_str();
   cmd->callback([a, motions, robots] {

@@ -4,9 +4,12 @@
 #include <cstdio>
 #include <fmt/format.h>
 #include <fstream>
+#include <iostream>
 #include <memory>
 
+#include "bounded.hpp"
 #include "commands.hpp"
+#include "job_budget.hpp"
 #include "motion_flags.hpp"
 #include "robot_flags.hpp"
 #include "stiffpath/compensation/tip_modes.hpp"
@@ -33,8 +36,14 @@ struct RunArgs {
   std::string output;
   std::string format = "csv";
   bool json = false;
+  std::uint64_t max_samples = default_max_samples;
   MotionFlags motion;
 };
+
+//! Bytes of one joint CSV row (measured rows of the thesis's jobs are 125-135 bytes; rounded up) and
+//! of a binary record (docs/compensation.md), for the output budget checked before writing.
+constexpr OutputEstimate joint_csv_estimate{140.0, 200.0, "joint CSV"};
+constexpr OutputEstimate joint_bin_estimate{112.0, 64.0, "binary joint records"};
 
 int count_lines(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -132,19 +141,24 @@ void run(const RunArgs& a) {
   compensation::FilterChain filters(std::move(filter_list));
   const auto acceleration = job::parse_acceleration_source(a.accel_source);
 
+  const auto format = job::parse_output_format(a.format);
+  (void)check_job_budget(a.job, options, a.max_samples, a.output,
+                         format == job::OutputFormat::csv ? joint_csv_estimate : joint_bin_estimate, "job",
+                         static_cast<std::uint64_t>(filters.delay_samples()));
   motion::TrajectoryStream stream(a.job, options);
   std::unique_ptr<job::JointWriter> writer;
   if (!a.output.empty()) {
-    writer = job::make_joint_writer(job::parse_output_format(a.format), a.output, options.rate_hz,
-                                     {robot.name, robot.geometry_hash()});
+    writer = job::make_joint_writer(format, a.output, options.rate_hz, {robot.name, robot.geometry_hash()});
   }
   const auto progress = progress_bar(a.job);
   const job::JobSummary s = job::run_job(stream, compensator, writer.get(), a.job, options.rate_hz, acceleration, progress,
                                             &filters);
   if (progress) std::fprintf(stderr, "\n");
 
+  // With -o - the joint records own standard output, so the summary goes to standard error.
+  std::FILE* info = a.output == "-" ? stderr : stdout;
   if (a.json) {
-    print_json({{"job", a.job},
+    const nlohmann::json summary_json{{"job", a.job},
                 {"robot", robot.name},
                 {"model", model_name},
                 {"compensation", compensating},
@@ -165,25 +179,30 @@ void run(const RunArgs& a) {
                 {"peak_joint_velocity_rad_s", tidy(s.peak_joint_velocity_rad_s)},
                 {"peak_joint_acceleration_rad_s2", tidy(s.peak_joint_acceleration_rad_s2)},
                 {"samples_outside_grid", s.samples_outside_grid},
-                {"output", a.output.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.output)}});
+                {"output", a.output.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.output)}};
+    if (a.output == "-") {
+      std::cerr << summary_json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
+    } else {
+      print_json(summary_json);
+    }
     return;
   }
-  fmt::print("{}: {} on {} with {}{}\n", a.job, compensating ? "compensated" : "not compensated", robot.name,
+  fmt::print(info, "{}: {} on {} with {}{}\n", a.job, compensating ? "compensated" : "not compensated", robot.name,
              model_name, compensating && a.gain != 1.0 ? fmt::format(" (gain {:g})", a.gain) : "");
   if (compensating) {
-    fmt::print("  {} compensation (damping ratio {:g}), reference smoothed over {:g} ms, shaper {}, jerk {:.0f} m/s^3\n",
+    fmt::print(info, "  {} compensation (damping ratio {:g}), reference smoothed over {:g} ms, shaper {}, jerk {:.0f} m/s^3\n",
                a.method, a.damping_ratio, a.smooth_ms, a.shaper, options.limits.max_jerk_m_s3);
   }
-  fmt::print("  {} samples at {:g} Hz, duration {:.4f} s\n", s.samples, options.rate_hz, s.duration_s);
-  fmt::print("  peak D'Alembert force {:.1f} N, predicted deflection {:.1f} um, correction {:.1f} um\n", s.peak_force_N,
+  fmt::print(info, "  {} samples at {:g} Hz, duration {:.4f} s\n", s.samples, options.rate_hz, s.duration_s);
+  fmt::print(info, "  peak D'Alembert force {:.1f} N, predicted deflection {:.1f} um, correction {:.1f} um\n", s.peak_force_N,
              units::m_to_um(s.peak_deflection_m), units::m_to_um(s.peak_correction_m));
-  fmt::print("  peak joint velocity {:.2f} rad/s, acceleration {:.1f} rad/s^2\n", s.peak_joint_velocity_rad_s,
+  fmt::print(info, "  peak joint velocity {:.2f} rad/s, acceleration {:.1f} rad/s^2\n", s.peak_joint_velocity_rad_s,
              s.peak_joint_acceleration_rad_s2);
   if (s.samples_outside_grid > 0) {
-    fmt::print("  {} samples outside the compliance model's measured region ({})\n", s.samples_outside_grid,
+    fmt::print(info, "  {} samples outside the compliance model's measured region ({})\n", s.samples_outside_grid,
                model ? compliance::to_string(model->outside_policy()) : "no model");
   }
-  if (!a.output.empty()) fmt::print("  wrote {}\n", a.output);
+  if (!a.output.empty()) fmt::print(info, "  wrote {}\n", a.output);
 }
 }  // namespace
 
@@ -194,7 +213,7 @@ void add_run_command(CLI::App& app) {
   add_robot_flag(cmd, a->robot);
   add_model_flags(cmd, a->request);
   cmd->add_flag("--no-compensation", a->no_compensation, "Plan and convert to joints without correcting");
-  cmd->add_option("--gain", a->gain, "Compensation gain k in p_cmd = p - k*delta")->check(CLI::NonNegativeNumber)
+  cmd->add_option("--gain", a->gain, "Compensation gain k in p_cmd = p - k*delta")->check(within(0.0, 10.0, ""))
       ->capture_default_str();
   cmd->add_option("--accel-source", a->accel_source, "analytic (profile) or numeric (thesis: 2nd difference)")
       ->capture_default_str();
@@ -203,7 +222,7 @@ void add_run_command(CLI::App& app) {
       ->check(CLI::IsMember({"dynamic", "quasi-static"}))
       ->capture_default_str();
   cmd->add_option("--damping-ratio", a->damping_ratio, "Damping ratio of the tip's modes assumed by dynamic compensation")
-      ->check(CLI::Range(0.0, 0.9))
+      ->check(within(0.0, 0.9, ""))
       ->capture_default_str();
   cmd->add_option("--smooth-ms", a->smooth_ms,
                   "Two moving averages of half this width over the planned reference (ms; 0: off): continuous "
@@ -215,7 +234,8 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--outside", a->outside,
                   "A sample more than 1 mm outside the model's measured region: error (refuse), clamp or extrapolate "
                   "(default: the model's, error unless it was fitted otherwise)");
-  cmd->add_option("-o,--output", a->output, "Joint trajectory file (written atomically)");
+  cmd->add_option("-o,--output", a->output, "Joint trajectory file (written atomically; - for standard output)");
+  add_max_samples_flag(cmd, a->max_samples);
   cmd->add_option("--format", a->format, "csv or bin")->capture_default_str();
   cmd->add_flag("--json", a->json, "Print the summary as JSON");
   add_motion_flags(cmd, a->motion);

@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 
+#include "bounded.hpp"
 #include "commands.hpp"
 #include "robot_flags.hpp"
 #include "twin_flags.hpp"
