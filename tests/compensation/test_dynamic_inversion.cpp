@@ -59,7 +59,7 @@ Mat2 sqrt_by_eigen(const Mat2& K) {
 double tip_error(const std::function<Vec2(double)>& base, const std::function<Vec2(double)>& plan,
                  const compliance::Model& model, double m, double zeta, double duration) {
   const double h = 5e-6, eps = 1e-6;
-  const auto base_velocity = [&](double t) { return (base(t + eps) - base(t - eps)) / (2 * eps); };
+  const auto base_velocity = [&](double t) -> Vec2 { return (base(t + eps) - base(t - eps)) / (2 * eps); };
   const auto accel = [&](double t, const Vec2& p, const Vec2& v) {
     const Vec2 pb = base(t);
     const Mat2 K = model.compliance(pb).inverse();
