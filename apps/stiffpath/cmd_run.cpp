@@ -71,13 +71,8 @@ job::Progress progress_bar(const std::string& job) {
 // The rectangle the planned job covers (one planning pass without compensation).
 compliance::GridBounds job_region(const std::string& job, const motion::PlanOptions& options) {
   motion::TrajectoryStream stream(job, options);
-  compliance::GridBounds box{1e300, -1e300, 1e300, -1e300};
-  while (const auto s = stream.next()) {
-    box.x_min = std::min(box.x_min, s->position_m.x());
-    box.x_max = std::max(box.x_max, s->position_m.x());
-    box.y_min = std::min(box.y_min, s->position_m.y());
-    box.y_max = std::max(box.y_max, s->position_m.y());
-  }
+  auto box = compliance::GridBounds::none();
+  while (const auto s = stream.next()) box.include(s->position_m);
   if (box.x_min > box.x_max) throw Error(SourceLocation{job}, "the program has no motion");
   return box;
 }

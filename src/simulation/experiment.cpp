@@ -19,13 +19,8 @@ namespace {
 // The rectangle of the robot's measurement points (its table's rows), m.
 compliance::GridBounds measured_region(const kinematics::Robot& robot) {
   const auto table = compliance::robot_table(robot);
-  compliance::GridBounds b{1e300, -1e300, 1e300, -1e300};
-  for (const auto& r : table.rows) {
-    b.x_min = std::min(b.x_min, r.x_m);
-    b.x_max = std::max(b.x_max, r.x_m);
-    b.y_min = std::min(b.y_min, r.y_m);
-    b.y_max = std::max(b.y_max, r.y_m);
-  }
+  auto b = compliance::GridBounds::none();
+  for (const auto& r : table.rows) b.include({r.x_m, r.y_m});
   if (!(b.x_max > b.x_min) || !(b.y_max > b.y_min)) {
     throw Error(SourceLocation{table.source}, "the measurement points must spread over x and y to place test motions");
   }

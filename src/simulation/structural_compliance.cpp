@@ -151,13 +151,8 @@ std::vector<Cell> cells_of(const measurement::DisplacementTable& table) {
 }
 
 compliance::GridBounds region_of(const measurement::DisplacementTable& table) {
-  compliance::GridBounds b{1e300, -1e300, 1e300, -1e300};
-  for (const auto& r : table.rows) {
-    b.x_min = std::min(b.x_min, r.x_m);
-    b.x_max = std::max(b.x_max, r.x_m);
-    b.y_min = std::min(b.y_min, r.y_m);
-    b.y_max = std::max(b.y_max, r.y_m);
-  }
+  auto b = compliance::GridBounds::none();
+  for (const auto& r : table.rows) b.include({r.x_m, r.y_m});
   return b;
 }
 
