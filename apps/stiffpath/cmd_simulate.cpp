@@ -63,6 +63,9 @@ kinematics::Robot pick_robot(const SimulateArgs& a, const job::JointReader& read
     robot = kinematics::load_robot(written_for);
   } else {
     robot = load_robot_flag("");
+    // Only files written before joint files recorded their robot get here: say which robot is assumed.
+    fmt::print(stderr, "warning: {}: the joint file does not record its robot; simulating it on {} (name another with --robot)\n",
+               a.joints, robot.name);
   }
   const std::string& hash = reader.geometry_hash();
   const bool other_name = !written_for.empty() && written_for != robot.name;

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <cmath>
 #include <fstream>
+#include <sstream>
 
 #include "cli_runner.hpp"
 #include "own_robot.hpp"
@@ -205,6 +206,27 @@ TEST(CliRobotRefusals, TwinAndMeasurementCommandsNeedWhatTheRobotLacks) {
   ASSERT_EQ(plain.exit_code, 0) << plain.err;
   EXPECT_EQ(plain.json()["model"], "none");
   EXPECT_EQ(plain.json()["peak_correction_um"], 0.0);
+}
+
+TEST(CliRobotRefusals, AJointFileWithoutItsRobotSaysWhichRobotIsAssumed) {
+  const Workspace w;
+  write_text(w.dir / "job.gcode", "G21 G90\nG0 X247 Y-50\nM3 S100\nG1 Y50 F60000\nM5\n");
+  ASSERT_EQ(w.run("run job.gcode -o j.csv").exit_code, 0);
+  // The same rows without the first line, where the file records its robot: as a user's own CSV would be.
+  std::ifstream in(w.dir / "j.csv");
+  std::string first;
+  std::getline(in, first);
+  ASSERT_EQ(first.rfind("# stiffpath joints", 0), 0U) << first;
+  std::stringstream rest;
+  rest << in.rdbuf();
+  write_text(w.dir / "bare.csv", rest.str());
+  const CliResult assumed = w.run("simulate bare.csv --json");
+  ASSERT_EQ(assumed.exit_code, 0) << assumed.err;
+  EXPECT_EQ(assumed.err, "warning: bare.csv: the joint file does not record its robot; simulating it on oc-gu "
+                         "(name another with --robot)\n");
+  // Named, or recorded in the file, there is nothing to warn about.
+  EXPECT_EQ(w.run("simulate bare.csv --robot oc-gu --json").err, "");
+  EXPECT_EQ(w.run("simulate j.csv --json").err, "");
 }
 
 TEST(CliRobotRefusals, AModelFileOfFormatOneNeedsForcing) {
