@@ -30,7 +30,7 @@ struct RunArgs {
   std::string accel_source = "analytic";
   std::string method = "dynamic";
   double damping_ratio = compensation::CompensatorOptions{}.damping_ratio;
-  double smooth_ms = 8.0;
+  double smooth_ms = compensation::kDefaultSmoothing_s * 1e3;
   std::string shaper = "none";
   std::string outside;
   std::string output;
@@ -124,15 +124,8 @@ void run(const RunArgs& a) {
       return compensation::lowest_natural_frequency_hz(model->compliance(model->bounds().clamp(p)), mass);
     });
   }
-  if (a.smooth_ms > 0.0) {
-    // Two moving averages of W/2 each: jerk and snap become continuous (the dynamic offset's terms in
-    // a, j and s then have no steps).
-    compensation::ReferenceFilterOptions f;
-    f.kind = compensation::FilterKind::smooth;
-    f.smooth_s = a.smooth_ms * 0.5e-3;
-    filter_list.emplace_back(options.rate_hz, f);
-    filter_list.emplace_back(options.rate_hz, f);
-  }
+  // The moving averages come last: the reference the compensator sees has continuous jerk and snap.
+  for (auto& f : compensation::smoothing_filters(options.rate_hz, a.smooth_ms * 1e-3)) filter_list.push_back(std::move(f));
   compensation::FilterChain filters(std::move(filter_list));
   const auto acceleration = job::parse_acceleration_source(a.accel_source);
 

@@ -197,4 +197,19 @@ std::int64_t FilterChain::delay_samples() const noexcept {
   return n;
 }
 
+std::vector<ReferenceFilter> smoothing_filters(double rate_hz, double width_s) {
+  if (!(width_s >= 0.0 && width_s <= 1.0)) {
+    throw Error("smoothing width must lie in 0…1000 ms, got " + std::to_string(width_s * 1e3) + " ms");
+  }
+  std::vector<ReferenceFilter> filters;
+  if (width_s > 0.0) {
+    ReferenceFilterOptions f;
+    f.kind = FilterKind::smooth;
+    f.smooth_s = 0.5 * width_s;
+    filters.emplace_back(rate_hz, f);
+    filters.emplace_back(rate_hz, f);
+  }
+  return filters;
+}
+
 }  // namespace stiffpath::compensation

@@ -62,18 +62,46 @@ struct Corner {
   double reach_m = 0.0;  // half the shorter adjacent side (neighbourhood radius)
 };
 
+// The corner a run of turning vertices stands for: where the incoming side's line meets the outgoing
+// side's (for a reversal, the vertex furthest along the incoming direction).
+Point2 ideal_corner(const std::vector<Point2>& v, std::size_t first, std::size_t last, const Point2& in,
+                    const Point2& out) {
+  const double cross = in.x() * out.y() - in.y() * out.x();
+  if (std::abs(cross) < 1e-6) {
+    std::size_t best = first;
+    for (std::size_t i = first; i <= last; ++i) best = v[i].dot(in) > v[best].dot(in) ? i : best;
+    return v[best];
+  }
+  // v[first] + s·in = v[last] + u·out, solved for s.
+  const Point2 d = v[last] - v[first];
+  const double s = (d.x() * out.y() - d.y() * out.x()) / cross;
+  return v[first] + s * in;
+}
+
 std::vector<Corner> find_corners(std::span<const Point2> command, const CorneringOptions& options) {
   const auto kept = simplify(command, options.merge_distance_m);
   std::vector<Point2> v;
   for (auto i : kept) v.push_back(command[i]);
   if (v.size() < 2) throw Error("cornering: the commanded path needs two distinct points");
   std::vector<Corner> corners;
-  for (std::size_t i = 1; i + 1 < v.size(); ++i) {
-    const Point2 a = v[i] - v[i - 1], b = v[i + 1] - v[i];
+  // Vertices joined by segments shorter than the corner span form one corner region (a corner that a
+  // smoothed or blended command rounds over a few µm); the region is a corner when straight sides at
+  // least that long enter and leave it and they turn by more than min_turn_rad. A region the span ends
+  // before a long side does (a fillet, an arc) is no corner.
+  const double span = options.max_corner_span_m;
+  std::size_t i = 1;
+  while (i + 1 < v.size()) {
+    const std::size_t first = i;
+    std::size_t last = i;
+    while (last + 2 < v.size() && (v[last + 1] - v[last]).norm() < span && (v[last + 1] - v[first]).norm() < span) ++last;
+    i = last + 1;
+    const Point2 a = v[first] - v[first - 1], b = v[last + 1] - v[last];
+    if (first != last && !(a.norm() >= span && b.norm() >= span)) continue;
     const Point2 in = a.normalized(), out = b.normalized();
     const double turn = std::atan2(std::abs(in.x() * out.y() - in.y() * out.x()), in.dot(out));
     if (turn <= options.min_turn_rad) continue;
-    corners.push_back({v[i], in, out, turn, options.neighbourhood_fraction * std::min(a.norm(), b.norm())});
+    corners.push_back({ideal_corner(v, first, last, in, out), in, out, turn,
+                       options.neighbourhood_fraction * std::min(a.norm(), b.norm())});
   }
   return corners;
 }

@@ -7,7 +7,6 @@
 #include <fmt/format.h>
 
 #include "job_pipeline.hpp"
-#include "stiffpath/compensation/numeric_acceleration.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/core/units.hpp"
 
@@ -73,43 +72,7 @@ void throw_refusal(const JointCommand& c, const compensation::Compensator& comp,
 JobSummary run_job(motion::SampleSource& source, const compensation::Compensator& compensator, JointWriter* writer,
                    const std::string& job_label, double rate_hz, AccelerationSource acceleration,
                    const Progress& progress, compensation::FilterChain* filters) {
-  compensation::NumericDifferentiator numeric(rate_hz);
-  bool draining = false;  // numeric: the source is exhausted, the differentiator hands out its last samples
-  // The next sample to compensate, in order; false at the end.
-  const auto next_planned = [&](TaskSample& out) -> bool {
-    if (acceleration == AccelerationSource::analytic) {
-      const auto sample = source.next();
-      if (sample) out = to_task_sample(*sample);
-      return sample.has_value();
-    }
-    while (!draining) {
-      const auto sample = source.next();
-      if (!sample) {
-        draining = true;
-      } else if (const auto ready = numeric.push(to_task_sample(*sample))) {
-        out = *ready;
-        return true;
-      }
-    }
-    const auto rest = numeric.drain();
-    if (rest) out = *rest;
-    return rest.has_value();
-  };
-  bool planned_done = false;  // filters: the planned samples are exhausted, the filters hand out their tails
-  const auto next_task = [&](TaskSample& out) -> bool {
-    if (!filters || filters->empty()) return next_planned(out);
-    if (!planned_done) {
-      TaskSample planned_sample;
-      if (next_planned(planned_sample)) {
-        out = *filters->push(planned_sample);
-        return true;
-      }
-      planned_done = true;
-    }
-    const auto tail = filters->drain();
-    if (tail) out = *tail;
-    return tail.has_value();
-  };
+  TaskSource tasks(source, rate_hz, acceleration, filters);
 
   // This thread plans; compensation, checks and writing go through the two-thread pipeline. An
   // error of the planner (a bad G-code line further on) is reported only after the samples planned
@@ -123,7 +86,7 @@ JobSummary run_job(motion::SampleSource& source, const compensation::Compensator
     if (!block) break;  // refused or the writer failed: the pipeline says which below
     std::size_t count = 0;
     try {
-      while (count < block->tasks.size() && (more = next_task(block->tasks[count]))) {
+      while (count < block->tasks.size() && (more = tasks.next(block->tasks[count]))) {
         if ((++planned & 0xffff) == 0 && progress) progress(planned, block->tasks[count].line);
         ++count;
       }

@@ -21,14 +21,15 @@ std::string compensation_fit_method(CompensationVariant variant) {
   return variant == CompensationVariant::thesis_quasi_static ? "bilinear" : "auto";
 }
 
-std::unique_ptr<compensation::Compensator> make_compensator(const kinematics::Robot& robot,
-                                                            std::shared_ptr<const compliance::Model> model,
-                                                            CompensationVariant variant,
-                                                            compensation::CompensatorOptions base) {
-  // Both variants use the quasi-static step today; the default's further options (dynamic inversion,
-  // smooth commands) are set here once the compensation module offers them.
-  (void)variant;
-  return std::make_unique<compensation::Compensator>(robot, std::move(model), base);
+TwinCompensation make_compensation(const kinematics::Robot& robot, std::shared_ptr<const compliance::Model> model,
+                                   CompensationVariant variant, compensation::CompensatorOptions base, double rate_hz) {
+  TwinCompensation out;
+  if (variant == CompensationVariant::default_run && base.enabled) {
+    base.method = compensation::Method::dynamic;
+    out.filters = compensation::FilterChain(compensation::smoothing_filters(rate_hz, compensation::kDefaultSmoothing_s));
+  }
+  out.compensator = std::make_unique<compensation::Compensator>(robot, std::move(model), base);
+  return out;
 }
 
 }  // namespace stiffpath::simulation

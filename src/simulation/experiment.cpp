@@ -9,6 +9,7 @@
 #include "stiffpath/compliance/model_factory.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/core/units.hpp"
+#include "stiffpath/job/task_source.hpp"
 #include "stiffpath/motion/trajectory_stream.hpp"
 #include "stiffpath/simulation/cg_lever.hpp"
 #include "stiffpath/simulation/compensator_factory.hpp"
@@ -81,12 +82,13 @@ RunResult run_once(const RunSpec& spec, const kinematics::Robot& robot, const Tw
   const auto model = options.oracle_model ? make_loaded_compliance(models.truth, sim_options.cg_lever)
                      : default_variant    ? models.compensation_default
                                           : models.compensation;
-  const auto owned = make_compensator(robot, model, variant, copts);
-  const compensation::Compensator& compensator = *owned;
+  TwinCompensation compensation = make_compensation(robot, model, variant, copts, plan.rate_hz);
+  const compensation::Compensator& compensator = *compensation.compensator;
+  job::TaskSource tasks(stream, plan.rate_hz, job::AccelerationSource::analytic, &compensation.filters);
   JointSource source = [&]() -> std::optional<compensation::JointCommand> {
-    const auto sample = stream.next();
-    if (!sample) return std::nullopt;
-    const compensation::JointCommand c = compensator.step(job::to_task_sample(*sample));
+    compensation::TaskSample sample;
+    if (!tasks.next(sample)) return std::nullopt;
+    const compensation::JointCommand c = compensator.step(sample);
     if (c.status != compensation::Status::ok) job::throw_refusal(c, compensator, motion.label);
     return c;
   };

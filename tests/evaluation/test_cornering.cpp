@@ -92,6 +92,44 @@ TEST(Cornering, StraightOrGentlyCurvedCommandHasNoCorners) {
   EXPECT_TRUE(iso9283_cornering(arc, arc).empty());
 }
 
+// An L whose corner is replaced by a quarter circle of radius r (centre inside the corner).
+std::vector<Point2> rounded_l(double r) {
+  std::vector<Point2> path;
+  append_move(path, {0.0, 0.0}, {0.1 - r, 0.0}, 400);
+  for (int i = 1; i < 90; ++i) {
+    const double a = -std::numbers::pi / 2 + i * std::numbers::pi / 180.0;
+    path.push_back({0.1 - r + r * std::cos(a), r + r * std::sin(a)});
+  }
+  append_move(path, {0.1, r}, {0.1, 0.1}, 400);
+  return path;
+}
+
+// A smoothed reference cuts an exact-stop corner by a few µm over a few tens of µm (8 ms of moving
+// averages at 5 g: ~9 µm over ±70 µm): still one corner, where its sides meet, and the cut is round-off.
+TEST(Cornering, CornerRoundedByAFewMicrometresIsStillOneCorner) {
+  const double r = 20e-6;
+  const auto command = rounded_l(r);
+  const auto c = iso9283_cornering(command, command);
+  ASSERT_EQ(c.size(), 1u);
+  EXPECT_NEAR(c[0].corner.x(), 0.1, 1e-9);
+  EXPECT_NEAR(c[0].corner.y(), 0.0, 1e-9);
+  EXPECT_NEAR(c[0].turn_rad, std::numbers::pi / 2, 1e-6);
+  EXPECT_NEAR(c[0].round_off_m, r * (std::sqrt(2.0) - 1.0), 0.05e-6);
+  EXPECT_LT(c[0].overshoot_m, 1e-12);
+  // The sharp L attained against that command: it passes through the sides' intersection.
+  const auto sharp = iso9283_cornering(command, l_shape());
+  ASSERT_EQ(sharp.size(), 1u);
+  EXPECT_LT(sharp[0].round_off_m, 1e-12);
+}
+
+// A fillet wider than the corner span turns gradually: no corner, and no piece of it becomes one.
+TEST(Cornering, FilletWiderThanTheCornerSpanIsNoCorner) {
+  for (double r : {2e-3, 0.6e-3}) {
+    const auto command = rounded_l(r);
+    EXPECT_TRUE(iso9283_cornering(command, command).empty()) << r;
+  }
+}
+
 TEST(Cornering, MissedCornerHasItsDistanceAndNoOvershoot) {
   const auto command = l_shape();
   const std::vector<Point2> elsewhere{{0.5, 0.5}, {0.6, 0.5}};  // far from the corner at (0.1, 0)

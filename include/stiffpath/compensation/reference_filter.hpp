@@ -105,4 +105,12 @@ class FilterChain {
   std::size_t draining_ = 0;  // the filter whose tail is being drained
 };
 
+//! The moving-average width `stiffpath run` and the twin's default compensation use (s).
+inline constexpr double kDefaultSmoothing_s = 0.008;
+
+//! Two moving averages of W/2 each (W = `width_s`; none for W = 0): jerk and snap of the planned
+//! samples become continuous, so the dynamic offset's terms in a, j and s have no steps.
+//! Throws stiffpath::Error for W outside 0…1 s.
+std::vector<ReferenceFilter> smoothing_filters(double rate_hz, double width_s);
+
 }  // namespace stiffpath::compensation

@@ -28,13 +28,18 @@ struct CorneringOptions {
   //! Points of the command closer together than this are merged before directions are taken (m),
   //! so that the dense samples of a move coming to rest do not make up directions of their own.
   double merge_distance_m = 1e-6;
+  //! Vertices of the command joined by segments shorter than this (m), between straight sides at least
+  //! this long, form one corner at the sides' intersection: a corner rounded by a few µm (a smoothed
+  //! reference at an exact stop, a small G64 blend) is still the corner the sides meet at. Arcs and
+  //! fillets wider than this are no corners.
+  double max_corner_span_m = 0.5e-3;
   //! The neighbourhood of a corner is this fraction of the shorter adjacent side: the attained
   //! points inside it (in the order marked, from their first entry to their last exit) count.
   double neighbourhood_fraction = 0.5;
 };
 
-//! Finds the sharp corners of `command` (interior vertices that turn by more than min_turn_rad;
-//! filleted corners turn gradually and are not corners) and measures `attained` (points in m in
+//! Finds the sharp corners of `command` (interior vertices, or runs of vertices within max_corner_span_m,
+//! that turn by more than min_turn_rad; filleted corners wider than that turn gradually and are not corners) and measures `attained` (points in m in
 //! the order marked) at each, in order along the command. Endpoints of the command are not corners,
 //! even when it closes on itself. Returns no entries for a command without sharp corners. Throws
 //! stiffpath::Error for fewer than two attained points, a command shorter than two distinct points,

@@ -8,6 +8,7 @@
 #include "stiffpath/compensation/compensator.hpp"
 #include "stiffpath/compensation/reference_filter.hpp"
 #include "stiffpath/job/joint_writer.hpp"
+#include "stiffpath/job/task_source.hpp"
 #include "stiffpath/motion/sampler.hpp"
 
 namespace stiffpath::job {
@@ -15,11 +16,6 @@ namespace stiffpath::job {
 using compensation::JointCommand;
 using compensation::TaskSample;
 
-//! Where the acceleration for F = −m·a comes from.
-enum class AccelerationSource {
-  analytic,  //!< from the jerk-limited profile (default)
-  numeric,   //!< second numerical derivative of the sampled positions, as in the thesis (§4.3)
-};
 AccelerationSource parse_acceleration_source(const std::string& text);  //!< "analytic" | "numeric"
 
 //! What a finished job reports.

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "stiffpath/compensation/compensator.hpp"
+#include "stiffpath/compensation/reference_filter.hpp"
 #include "stiffpath/compliance/model.hpp"
 #include "stiffpath/kinematics/robot.hpp"
 
@@ -15,8 +16,9 @@ enum class CompensationVariant {
   //! The thesis's method (§4.2–4.4): the bilinear grid model (eq. 4.12) and the quasi-static correction
   //! p_cmd = p − C·F.
   thesis_quasi_static,
-  //! What `stiffpath run` does by default: the model its cross-validation favours, and the compensator's
-  //! default options.
+  //! What `stiffpath run` does by default: the model its cross-validation favours, dynamic compensation
+  //! (the tip's spring–damper inverted, compensation::Method::dynamic) on a reference smoothed over
+  //! compensation::kDefaultSmoothing_s.
   default_run,
 };
 
@@ -28,10 +30,17 @@ CompensationVariant parse_compensation_variant(const std::string& text);
 //! The compliance::fit_model method the variant fits to the virtual campaign ("bilinear", "auto").
 std::string compensation_fit_method(CompensationVariant variant);
 
-//! The compensator of `variant` for `robot` with `model`, from `base` (gain, enabled, limit checks).
-std::unique_ptr<compensation::Compensator> make_compensator(const kinematics::Robot& robot,
-                                                            std::shared_ptr<const compliance::Model> model,
-                                                            CompensationVariant variant,
-                                                            compensation::CompensatorOptions base = {});
+//! A variant's compensation: the compensator and the filters its reference passes first.
+struct TwinCompensation {
+  std::unique_ptr<compensation::Compensator> compensator;
+  compensation::FilterChain filters;  //!< empty for the thesis's variant
+};
+
+//! The compensation of `variant` for `robot` with `model`, from `base` (gain, enabled, limit checks,
+//! damping ratio) at the command rate `rate_hz`: the thesis's variant keeps `base` as it is, the
+//! default sets the dynamic method and the default smoothing, as `stiffpath run` does. A disabled
+//! `base` gets no filters (the uncompensated robot follows the plan as it is).
+TwinCompensation make_compensation(const kinematics::Robot& robot, std::shared_ptr<const compliance::Model> model,
+                                   CompensationVariant variant, compensation::CompensatorOptions base, double rate_hz);
 
 }  // namespace stiffpath::simulation
