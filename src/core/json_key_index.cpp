@@ -1,6 +1,7 @@
 // Positions of the keys of a JSON text, so that a field's error can name its line and column.
 #include <cctype>
 #include <optional>
+#include <set>
 #include <string>
 
 #include "stiffpath/core/error.hpp"
@@ -43,6 +44,7 @@ class KeyScanner {
  private:
   void object(const std::string& path) {
     advance();  // {
+    std::set<std::string> keys;  // of this object only: "a.b" here and "b" inside "a" are different keys
     for (;;) {
       skip_space();
       if (at_end() || text_[pos_] == '}') break;
@@ -58,9 +60,8 @@ class KeyScanner {
       } catch (const nlohmann::json::exception&) {
       }
       const std::string child = path.empty() ? key : path + "." + key;
-      if (!index_.emplace(child, std::make_pair(line, column)).second && !duplicate_) {
-        duplicate_ = Duplicate{child, line, column};
-      }
+      index_.emplace(child, std::make_pair(line, column));
+      if (!keys.insert(key).second && !duplicate_) duplicate_ = Duplicate{child, line, column};
       skip_space();
       if (!at_end() && text_[pos_] == ':') advance();
       value(child);

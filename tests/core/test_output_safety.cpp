@@ -163,6 +163,10 @@ TEST(Ambiguity, ADuplicatedJsonKeyIsRefusedAtItsSecondOccurrence) {
   }
   // The same key in two different objects (array elements) is not a duplicate.
   EXPECT_NO_THROW((void)core::parse_json_document("[{\"a\": 1}, {\"a\": 2}]", "ok.json"));
+  // Nor is a key with a dot in it and a nested key of the same dotted path: they are different keys.
+  EXPECT_NO_THROW((void)core::parse_json_document("{\"a.b\": 1, \"a\": {\"b\": 2}}", "dots.json"));
+  // The same key twice after another object in between is still one object's duplicate.
+  EXPECT_THROW((void)core::parse_json_document("{\"a\": {\"x\": 1}, \"b\": 2, \"a\": 3}", "again.json"), Error);
 }
 
 TEST(Ambiguity, AJsonNumberBeyondDoubleRangeIsRefusedAtItsPosition) {
