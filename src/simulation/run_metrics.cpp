@@ -17,6 +17,11 @@ namespace {
 // A command whose ends are closer than this is a closed path (m).
 constexpr double kClosedGap_m = 1e-6;
 
+// The command's own largest distance from its fitted sides above which its line metrics are refused
+// (m): a contour that is not straight sides (an arc, a rounded rectangle taken as one side) would
+// report its own shape as the robot's deviation.
+constexpr double kStraightCommand_m = 50e-6;
+
 // Fewer points than this in the mark (or two in the command) leave nothing to measure.
 std::string too_short(std::size_t marked, std::size_t commanded) {
   if (marked >= 4 && commanded >= 2) return {};
@@ -53,6 +58,11 @@ StrokeMetrics measure_stroke(std::span<const Vec2> marked, std::span<const Vec2>
   try {
     const auto mark = evaluation::measure_path(marked, n_sides, options);
     const auto command = evaluation::measure_path(commanded, n_sides, options);
+    if (command.max_deviation_m > kStraightCommand_m) {
+      throw Error(fmt::format("the command itself lies up to {:.3f} mm from its {} fitted side{} (more than {:g} mm): "
+                              "its shape would be read as deviation",
+                              command.max_deviation_m * 1e3, n_sides, n_sides == 1 ? "" : "s", kStraightCommand_m * 1e3));
+    }
     m.length_m = mark.length_m;
     m.commanded_length_m = command.length_m;
     m.length_error_m = mark.length_m - command.length_m;

@@ -161,6 +161,27 @@ TEST(Strokes, SidesAreInferredFromEachStrokesCorners) {
   EXPECT_NEAR(inferred.strokes()[0].metrics.commanded_length_m, 0.070 + 2 * std::hypot(0.035, 0.120), 5e-6);
 }
 
+// A contour that is no straight sides (a G2 circle: no sharp corners, so one inferred side) gets no line
+// metrics: read as one side it would report its own shape as the robot's deviation. The straight line
+// after it keeps its numbers, and every stroke keeps AT_p.
+TEST(Strokes, AContourThatIsNotStraightSidesGetsNoLineMetrics) {
+  const auto robot = kinematics::load_robot("oc-gu");
+  const auto truth = make_true_compliance(robot);
+  const auto joints = joints_of(
+      "G21 G90 G61\nG0 X202.132 Y0\nM3 S1000\nG2 X202.132 Y0 I20 J0 F60000\nM5\n"
+      "G0 X190 Y40\nM3 S1000\nG1 X230 Y40\nM5\n");
+  RunMeter meter(0);
+  const RunMetrics total = meter.totals(simulate(source_of(joints), robot, truth, {}, meter.sink()));
+  ASSERT_EQ(meter.strokes().size(), 2U);
+  EXPECT_NE(meter.strokes()[0].refusal.find("the command itself lies up to"), std::string::npos)
+      << meter.strokes()[0].refusal;
+  EXPECT_EQ(meter.strokes()[0].sides, 0);
+  EXPECT_TRUE(meter.strokes()[0].path_accuracy);
+  EXPECT_TRUE(meter.strokes()[1].refusal.empty()) << meter.strokes()[1].refusal;
+  EXPECT_EQ(total.line_strokes, 1U);
+  EXPECT_NEAR(total.commanded_length_m, 0.040, 5e-6);  // only the line's length is summed
+}
+
 TEST(Strokes, AJobThatNeverFiresTheLaserHasNothingToMeasure) {
   const auto robot = kinematics::load_robot("oc-gu");
   const auto joints = joints_of("G21 G90\nG0 X190 Y-40\nG1 X230 Y-40 F60000\n");

@@ -33,8 +33,9 @@ struct StrokeMetrics {
   std::size_t index = 0;              //!< 0-based, in job order
   double start_s = 0.0, end_s = 0.0;  //!< commanded times of its first and last sample
   std::size_t marked_points = 0;
-  //! Why the line metrics were refused (too few points, a side measure_path cannot fit: a stroke
-  //! that is not `sides` straight sides); empty when `metrics`' line fields are valid.
+  //! Why the line metrics were refused (too few points, a side measure_path cannot fit, or a command
+  //! more than 50 µm from its own fitted sides: a stroke that is not `sides` straight sides, such as
+  //! an arc or a rounded rectangle); empty when `metrics`' line fields are valid.
   std::string refusal;
   bool path_accuracy = false;         //!< whether metrics.path_accuracy_m was measured (a normal plane crossed the mark)
   int sides = 0;                      //!< straight sides the line metrics were measured as (0 when refused)
