@@ -132,7 +132,9 @@ TEST(FuzzRegressions, ImageMetadataInputsParseWithoutUndefinedBehaviour) {
     std::ifstream in(entry.path(), std::ios::binary);
     const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     const auto r = stiffpath::vision::resolution_from_memory(bytes);
-    if (r) EXPECT_TRUE(std::isfinite(r->dpi_x) && r->dpi_x > 0 && std::isfinite(r->dpi_y) && r->dpi_y > 0) << entry.path();
+    if (r) {
+      EXPECT_TRUE(std::isfinite(r->dpi_x) && r->dpi_x > 0 && std::isfinite(r->dpi_y) && r->dpi_y > 0) << entry.path();
+    }
     ++count;
   }
   EXPECT_GE(count, 1u);

@@ -76,25 +76,6 @@ std::vector<NumericOption> numeric_options(const std::string& help) {
   return out;
 }
 
-// Runs with a 60 s limit (coreutils timeout): a runaway job shows up as exit 124 instead of hanging the suite.
-CliResult run_bounded(const std::string& args, const fs::path& cwd) {
-  const fs::path err_path = cwd / "sweep.err";
-  const std::string command =
-      "cd '" + cwd.string() + "' && timeout 60 '" + std::string(STIFFPATH_CLI) + "' " + args + " 2>'" + err_path.string() + "'";
-  CliResult result;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) return result;
-  char buffer[4096];
-  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) result.out.append(buffer, n);
-  const int status = ::pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream err(err_path);
-  std::stringstream ss;
-  ss << err.rdbuf();
-  result.err = ss.str();
-  return result;
-}
-
 bool has_non_finite(const std::string& text) {
   static const std::regex bad(R"((^|[^A-Za-z_])(-?nan|-?inf|infinity)([^A-Za-z_]|$))", std::regex::icase);
   return std::regex_search(text, bad);
@@ -117,7 +98,7 @@ TEST_P(OptionSweep, AbsurdNumbersAreRefusedByNameOrGiveFiniteResults) {
       for (int k = 1; k < o.count; ++k) arg += std::string(",") + value;
       const std::string line = std::string(sub.name) + " " + sub.base + " " + o.flag + "=" + arg;
       SCOPED_TRACE(line);
-      const CliResult r = run_bounded(line, dir);
+      const CliResult r = run_cli(line, dir, 60);  // a runaway job shows up as exit 124
       ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 2) << "exit " << r.exit_code << "\n" << r.err;
       if (r.exit_code == 2) {
         // The refusal names the option, or (a value the option accepts made the input absurd) a located input.

@@ -20,13 +20,17 @@ struct CliResult {
   [[nodiscard]] nlohmann::json json() const { return nlohmann::json::parse(out); }
 };
 
-//! Runs `stiffpath <args>` (args are passed to /bin/sh as written) in `cwd`.
-inline CliResult run_cli(const std::string& args, const std::filesystem::path& cwd = std::filesystem::current_path()) {
+//! Runs `stiffpath <args>` (args are passed to /bin/sh as written) in `cwd`. With `timeout_s` > 0 the
+//! run is stopped after that long (coreutils timeout: exit code 124), so a runaway job fails its test
+//! instead of hanging the suite.
+inline CliResult run_cli(const std::string& args, const std::filesystem::path& cwd = std::filesystem::current_path(),
+                         int timeout_s = 0) {
   static int counter = 0;
   const auto err_path = std::filesystem::temp_directory_path() /
                         ("stiffpath_cli_err_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-  const std::string command = "cd '" + cwd.string() + "' && '" + std::string(STIFFPATH_CLI) + "' " + args + " 2>'" +
-                              err_path.string() + "'";
+  const std::string limit = timeout_s > 0 ? "timeout " + std::to_string(timeout_s) + " " : std::string();
+  const std::string command = "cd '" + cwd.string() + "' && " + limit + "'" + std::string(STIFFPATH_CLI) + "' " + args +
+                              " 2>'" + err_path.string() + "'";
   CliResult result;
   FILE* pipe = ::popen(command.c_str(), "r");
   if (pipe == nullptr) return result;
