@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "motion_flags.hpp"
 #include "robot_flags.hpp"
 #include "stiffpath/core/error.hpp"
@@ -26,7 +27,7 @@ struct PlanArgs {
   std::string job;
   std::string output;
   std::string robot;
-  bool json = false;
+  bool json = false, quiet = false;
   std::uint64_t max_samples = default_max_samples;
   MotionFlags motion;
 };
@@ -40,9 +41,9 @@ nlohmann::json warnings_json(const std::vector<motion::GcodeWarning>& warnings) 
 }
 
 // Plans without sampling first, so a job beyond the cap is refused before a sample is made.
-void check_size(const PlanArgs& a, const motion::PlanOptions& options) {
+std::uint64_t check_size(const PlanArgs& a, const motion::PlanOptions& options) {
   const motion::PlanSize size = motion::measure_plan(a.job, options);
-  if (size.samples <= a.max_samples) return;
+  if (size.samples <= a.max_samples) return size.samples;
   const double bytes = static_cast<double>(size.samples) * csv_row_bytes;
   const std::string csv = bytes < 1e9 ? fmt::format("{:.1f} MB", bytes * 1e-6) : fmt::format("{:.1f} GB", bytes * 1e-9);
   throw Error(SourceLocation{a.job}, fmt::format("the plan has {} samples ({:.1f} s at {:g} Hz, about {} of CSV), more "
@@ -54,11 +55,14 @@ void check_size(const PlanArgs& a, const motion::PlanOptions& options) {
 // assembly mode, joint position limits), naming its G-code line, time and point.
 class WorkspaceCheck final : public motion::SampleSource {
  public:
-  WorkspaceCheck(motion::SampleSource& inner, const kinematics::Robot& robot, std::string job)
-      : inner_(inner), robot_(robot), five_bar_(robot.five_bar()), job_(std::move(job)) {}
+  WorkspaceCheck(motion::SampleSource& inner, const kinematics::Robot& robot, std::string job, Progress& progress,
+                 std::uint64_t total)
+      : inner_(inner), robot_(robot), five_bar_(robot.five_bar()), job_(std::move(job)), progress_(progress),
+        total_(std::max<std::uint64_t>(total, 1)) {}
   std::optional<motion::TrajectorySample> next() override {
     auto s = inner_.next();
     if (!s) return s;
+    if (++count_ % 4096 == 0) progress_.update(static_cast<double>(count_) / static_cast<double>(total_));
     const auto r = five_bar_.solve_inverse(s->position_m);
     if (r.status != kinematics::Reach::ok || !robot_.within_limits(r.q)) {
       throw Error(SourceLocation{job_, s->line},
@@ -74,18 +78,23 @@ class WorkspaceCheck final : public motion::SampleSource {
   const kinematics::Robot& robot_;
   kinematics::FiveBar five_bar_;
   std::string job_;
+  Progress& progress_;
+  std::uint64_t total_, count_ = 0;
 };
 
 void run_plan(const PlanArgs& a) {
   const auto robot = load_robot_flag(a.robot);
   motion::PlanOptions options = plan_options(a.motion, robot);
   if (a.json) options.gcode.on_warnings = nullptr;  // they go into the JSON document
-  check_size(a, options);
+  Progress progress("plan", a.quiet);
+  progress.update(0.0, "sizing the plan");
+  const std::uint64_t total = check_size(a, options);
   motion::TrajectoryStream planned(a.job, options);
-  WorkspaceCheck stream(planned, robot, a.job);
+  WorkspaceCheck stream(planned, robot, a.job, progress, total);
   const motion::TrajectorySummary summary = a.output.empty()
                                                 ? motion::summarize(stream, options.rate_hz)
                                                 : motion::write_trajectory_csv(stream, options.rate_hz, a.output);
+  progress.finish();
   const auto& planner = planned.planner_statistics();
   if (a.json) {
     print_json({{"job", a.job},
@@ -135,6 +144,7 @@ void add_plan_command(CLI::App& app) {
   cmd->add_option("--max-samples", a->max_samples, "Refuse a plan with more samples than this (20 M: 2 h 46 min at 2 kHz)")
       ->capture_default_str();
   cmd->add_flag("--json", a->json, "Print the summary as JSON (errors too, on stderr)");
+  cmd->add_flag("--quiet", a->quiet, "No progress bar (it is shown only on a terminal anyway)");
   cmd->callback([a] { run_plan(*a); });
 }
 

@@ -1,12 +1,11 @@
 // `stiffpath run`: the main job — G-code to compensated joint commands at 2 kHz (thesis fig. 4.3).
-#include <unistd.h>
-
 #include <cstdio>
 #include <fmt/format.h>
 #include <fstream>
 #include <memory>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "motion_flags.hpp"
 #include "robot_flags.hpp"
 #include "stiffpath/job/job.hpp"
@@ -27,7 +26,7 @@ struct RunArgs {
   std::string outside;
   std::string output;
   std::string format = "csv";
-  bool json = false;
+  bool json = false, quiet = false;
   MotionFlags motion;
 };
 
@@ -41,16 +40,13 @@ int count_lines(const std::string& path) {
   return lines;
 }
 
-// A progress bar on stderr for long jobs when stderr is a terminal.
-job::Progress progress_bar(const std::string& job) {
-  if (!::isatty(2)) return {};
-  const int total = count_lines(job);
-  if (total < 2000) return {};
-  return [total](std::uint64_t samples, int line) {
-    const double f = std::min(1.0, static_cast<double>(line) / total);
-    const int filled = static_cast<int>(f * 30);
-    std::fprintf(stderr, "\r[%-30s] %3.0f%%  line %d/%d  %.1f M samples", std::string(static_cast<std::size_t>(filled), '#').c_str(),
-                 f * 100, line, total, static_cast<double>(samples) / 1e6);
+// The job's progress as the share of its G-code lines done, on the shared progress bar.
+job::Progress progress_bar(const std::string& job, Progress& bar) {
+  if (!bar.enabled()) return {};
+  const int total = std::max(count_lines(job), 1);
+  return [total, &bar](std::uint64_t samples, int line) {
+    bar.update(static_cast<double>(line) / total, fmt::format("line {}/{}  {:.1f} M samples", line, total,
+                                                              static_cast<double>(samples) / 1e6));
   };
 }
 
@@ -76,9 +72,10 @@ void run(const RunArgs& a) {
   if (!a.output.empty()) {
     writer = job::make_joint_writer(job::parse_output_format(a.format), a.output, options.rate_hz, robot.name);
   }
-  const auto progress = progress_bar(a.job);
+  Progress bar("run", a.quiet);
+  const auto progress = progress_bar(a.job, bar);
   const job::JobSummary s = job::run_job(stream, compensator, writer.get(), a.job, options.rate_hz, acceleration, progress);
-  if (progress) std::fprintf(stderr, "\n");
+  bar.finish();
 
   if (a.json) {
     print_json({{"job", a.job},
@@ -131,6 +128,7 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("-o,--output", a->output, "Joint trajectory file (written atomically)");
   cmd->add_option("--format", a->format, "csv or bin")->capture_default_str();
   cmd->add_flag("--json", a->json, "Print the summary as JSON");
+  cmd->add_flag("--quiet", a->quiet, "No progress bar (it is shown only on a terminal anyway)");
   add_motion_flags(cmd, a->motion);
   cmd->callback([a] { run(*a); });
 }

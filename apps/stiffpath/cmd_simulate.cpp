@@ -1,12 +1,16 @@
 // `stiffpath simulate`: a joint trajectory from `stiffpath run` through the digital twin, measured like the thesis's marks.
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <fmt/format.h>
 #include <memory>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "robot_flags.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/job/joint_reader.hpp"
+#include "stiffpath/job/joint_writer.hpp"
 #include "stiffpath/core/atomic_file.hpp"
 #include "stiffpath/simulation/run_metrics.hpp"
 #include "stiffpath/simulation/twin_models.hpp"
@@ -22,8 +26,21 @@ struct SimulateArgs {
   std::uint64_t seed = simulation::TrueComplianceOptions{}.seed;
   simulation::SimulationOptions sim;
   std::string marks_csv;
-  bool json = false;
+  bool json = false, quiet = false;
 };
+
+// Records in a joint file, for the progress bar: from the size for the binary format, lines for CSV.
+double record_count(const std::string& path, bool binary) {
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(path, ec);
+  if (ec) return 1.0;
+  if (binary) return std::max(1.0, (static_cast<double>(bytes) - job::kBinaryHeaderBytes) / job::kBinaryRecordBytes);
+  std::ifstream in(path, std::ios::binary);
+  double lines = 0;
+  char buffer[1 << 16];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) lines += static_cast<double>(std::count(buffer, buffer + in.gcount(), '\n'));
+  return std::max(1.0, lines - 1);
+}
 
 // The laser's mark as x_mm, y_mm in marking order, y flipped to the scan's downward axis, so that
 // `stiffpath render-scan --path-csv` draws it as the paper would show it.
@@ -59,8 +76,16 @@ void simulate(const SimulateArgs& a) {
     robot = load_robot_flag("");
   }
   const auto truth = simulation::make_true_compliance(robot, {"", a.perturbation, a.seed});
-  const simulation::SimulationResult run =
-      simulation::simulate([&reader] { return reader.next(); }, robot, truth, a.sim);
+  Progress progress("simulate", a.quiet);
+  const double total = progress.enabled() ? record_count(a.joints, reader.binary()) : 1.0;
+  double done = 0;
+  const simulation::SimulationResult run = simulation::simulate(
+      [&] {
+        if (++done == 1 || static_cast<long>(done) % 2048 == 0) progress.update(done / total);
+        return reader.next();
+      },
+      robot, truth, a.sim);
+  progress.finish();
   const simulation::RunMetrics m = simulation::measure_run(run, a.sides);
   if (!a.marks_csv.empty()) write_marks(a.marks_csv, run);
   const auto corner_metric = [&m](double value_m) -> nlohmann::json {
@@ -118,6 +143,7 @@ void add_simulate_command(CLI::App& app) {
       ->check(CLI::Range(1000.0, 1e7))->capture_default_str();
   cmd->add_option("--marks-csv", a->marks_csv, "Also write the mark (x_mm, y_mm, y down) for `render-scan --path-csv`");
   cmd->add_flag("--json", a->json, "Print the metrics as JSON");
+  cmd->add_flag("--quiet", a->quiet, "No progress bar (it is shown only on a terminal anyway)");
   cmd->callback([a] { simulate(*a); });
 }
 

@@ -105,7 +105,8 @@ TEST(CliExperiment, ReducedMatrixWritesOneRowPerRun) {
     std::stringstream ss(line);
     std::vector<std::string> cells;
     for (std::string c; std::getline(ss, c, ',');) cells.push_back(c);
-    ASSERT_EQ(cells.size(), 17U);
+    ASSERT_EQ(cells.size(), 18U);
+    EXPECT_EQ(cells[17], "simulated");
     EXPECT_TRUE(cells[13].empty() && cells[14].empty());  // a line has no corners: CR and CO left empty
     const double error = std::stod(cells[9]), g = std::stod(cells[5]);
     if (g != 5) continue;
