@@ -7,11 +7,15 @@
 
 #include "commands.hpp"
 #include "stiffpath/core/error.hpp"
+#include "stiffpath/core/signal_cleanup.hpp"
 #include "stiffpath/motion/gcode_diagnostics.hpp"
 
 namespace stiffpath::cli {
 
-void print_json(const nlohmann::json& document) { std::cout << document.dump(2) << '\n'; }
+// Text that is not UTF-8 (a file name, a CSV cell) is printed with U+FFFD in its place, never refused.
+void print_json(const nlohmann::json& document) {
+  std::cout << document.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
+}
 
 double tidy(double value) {
   if (value == 0.0 || !std::isfinite(value)) return value;
@@ -55,7 +59,9 @@ void report(const CLI::App& app, const stiffpath::Error& e) {
     } else {
       errors.push_back(error_json(e));
     }
-    std::cerr << nlohmann::json{{"errors", errors}, {"omitted", all != nullptr ? all->omitted() : 0}}.dump(2) << '\n';
+    std::cerr << nlohmann::json{{"errors", errors}, {"omitted", all != nullptr ? all->omitted() : 0}}.dump(
+                     2, ' ', false, nlohmann::json::error_handler_t::replace)
+              << '\n';
     return;
   }
   std::istringstream lines(e.what());
@@ -69,6 +75,7 @@ void enable_json_errors(const CLI::App* command) { json_error_commands().insert(
 }  // namespace stiffpath::cli
 
 int main(int argc, char** argv) {
+  stiffpath::core::install_signal_cleanup();  // an interrupted run leaves no temporary file
   CLI::App app{"stiffpath: compliance compensation for high-acceleration planar parallel robots"};
   app.set_version_flag("--version", std::string("stiffpath ") + STIFFPATH_VERSION);
   app.require_subcommand(1);

@@ -15,6 +15,22 @@ std::vector<std::string> write_results_figures(const std::filesystem::path& dir,
   for (const auto& r : table.rows) {
     if (std::find(robots.begin(), robots.end(), r.robot) == robots.end()) robots.push_back(r.robot);
   }
+  // Without compensation first, then each compensation variant in the order the table names them.
+  struct Series {
+    bool compensated;
+    std::string variant;
+    [[nodiscard]] std::string label() const {
+      if (!compensated) return "without";
+      return variant.empty() ? "with compensation" : "with " + variant + " compensation";
+    }
+  };
+  std::vector<Series> series{{false, ""}};
+  for (const auto& r : table.rows) {
+    if (!r.compensated) continue;
+    if (std::none_of(series.begin(), series.end(), [&](const Series& s) { return s.compensated && s.variant == r.variant; })) {
+      series.push_back({true, r.variant});
+    }
+  }
   struct Panel {
     std::string name, motion, ylabel, what, figure;
     int column;  // in the data file: 1 acceleration_g, 2 length_mm, 3 deviation_area_mm2
@@ -31,25 +47,30 @@ std::vector<std::string> write_results_figures(const std::filesystem::path& dir,
     std::string data, plots;
     int block = 0;
     for (std::size_t k = 0; k < robots.size(); ++k) {
-      for (bool on : {false, true}) {
+      for (std::size_t v = 0; v < series.size(); ++v) {
+        const Series& one = series[v];
         std::vector<const ResultRow*> rows;
         for (const auto& r : table.rows) {
-          if (r.robot == robots[k] && r.motion == panel.motion && r.compensated == on) rows.push_back(&r);
+          if (r.robot == robots[k] && r.motion == panel.motion && r.compensated == one.compensated &&
+              r.variant == one.variant) {
+            rows.push_back(&r);
+          }
         }
         if (rows.empty()) continue;
         std::sort(rows.begin(), rows.end(), [](auto* a, auto* b) { return a->acceleration_g < b->acceleration_g; });
-        data += fmt::format("# {} {}\n# acceleration_g\tlength_mm\tdeviation_area_mm2\n", robots[k],
-                            on ? "with compensation" : "without compensation");
+        const std::string title = robots[k] + " " + one.label();
+        data += fmt::format("# {}\n# acceleration_g\tlength_mm\tdeviation_area_mm2\n", title);
         for (const auto* r : rows) {
           data += fmt::format("{:g}\t{:.6f}\t{:.6f}\n", r->acceleration_g, r->length_mm, r->deviation_area_mm2);
         }
         data += "\n\n";
         if (!plots.empty()) plots += ", \\\n  ";
-        // Per robot a colour and a point shape (open without, filled with compensation); dashed without, solid with.
-        const int point = 4 + 2 * static_cast<int>(k % 6) + (on ? 1 : 0);
+        // Per robot a colour, per compensation a point shape (open without, filled with) and a dash pattern
+        // (dashed without, solid with the first variant, dotted and further with the others).
+        const int point = 4 + 2 * static_cast<int>(k % 6) + (one.compensated ? 1 : 0);
+        const int dash = one.compensated ? (v == 1 ? 1 : static_cast<int>(v) + 1) : 2;
         plots += fmt::format("{} index {} using 1:{} with linespoints lc {} dt {} pt {} ps 1.3 title {}",
-                             quote(panel.name + ".tsv"), block++, panel.column, k + 1, on ? 1 : 2, point,
-                             quote(robots[k] + (on ? " with compensation" : " without")));
+                             quote(panel.name + ".tsv"), block++, panel.column, k + 1, dash, point, quote(title));
       }
     }
     if (plots.empty()) continue;

@@ -42,7 +42,9 @@ Nearest nearest(const std::vector<V>& path, const V& p) {
   for (std::size_t k = 0; k + 1 < path.size(); ++k) {
     const V a = path[k], ab = path[k + 1] - a;
     const double len2 = ab.squaredNorm();
-    const double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+    // A repeated point (the robot at rest, a smoothed start) has no direction, so no side: skipped.
+    if (len2 == 0.0) continue;
+    const double t = std::clamp((p - a).dot(ab) / len2, 0.0, 1.0);
     const V foot = a + t * ab;
     const double d2 = (p - foot).squaredNorm();
     if (d2 < best_d2) {
@@ -62,6 +64,7 @@ MarkPlotSummary plot_mark(const std::filesystem::path& dir, const std::string& n
   const std::vector<V> path = thin(input.commanded_m, 5000), mark = thin(input.mark_m, 5000);
   V lo = path.front(), hi = path.front();
   for (const V& p : path) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  if ((hi - lo).maxCoeff() == 0.0) throw Error(SourceLocation{input.label}, "the commanded path does not move while the laser is on");
   const double extent = std::max((hi - lo).maxCoeff(), 1e-3);
 
   std::vector<Nearest> near;

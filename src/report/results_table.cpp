@@ -16,7 +16,8 @@ std::string check_source(const std::string& text) {
 ResultsTable results_from_runs(const std::vector<simulation::RunResult>& results) {
   ResultsTable table{{}, "simulated", "experiment"};
   for (const auto& r : results) {
-    table.rows.push_back({r.spec.robot, r.spec.motion, r.spec.compensated, r.spec.acceleration_g,
+    table.rows.push_back({r.spec.robot, r.spec.motion, r.spec.compensated,
+                          r.spec.compensated ? r.spec.variant : std::string(), r.spec.acceleration_g,
                           r.metrics.length_m * 1e3, r.metrics.deviation_area_m2 * 1e6});
   }
   return table;
@@ -28,6 +29,7 @@ ResultsTable load_results_csv(const std::string& path, const std::string& source
                     g = csv.column("acceleration_g"), length = csv.column("length_mm"),
                     area = csv.column("deviation_area_mm2");
   const auto source = csv.find_column("source");
+  const auto variant = csv.find_column("variant");
   ResultsTable table{{}, source_flag.empty() ? std::string() : check_source(source_flag), path};
   while (csv.next()) {
     ResultRow row;
@@ -38,6 +40,7 @@ ResultsTable load_results_csv(const std::string& path, const std::string& source
     const long on = csv.integer(compensated);
     if (on != 0 && on != 1) csv.fail(compensated, fmt::format("must be 0 or 1, got {}", on));
     row.compensated = on == 1;
+    if (variant && row.compensated) row.variant = std::string(csv.text(*variant));
     row.acceleration_g = csv.number(g);
     if (row.acceleration_g <= 0.0) csv.fail(g, "must be positive");
     row.length_mm = csv.number(length);

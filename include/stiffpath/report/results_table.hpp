@@ -13,6 +13,7 @@ struct ResultRow {
   std::string robot;            //!< series name, e.g. "oc-gu"
   std::string motion;           //!< "x", "y", "triangle" or a user's path
   bool compensated = false;
+  std::string variant;          //!< which compensation when compensated ("thesis", "default", a user's name; "" unnamed)
   double acceleration_g = 0.0;  //!< path acceleration limit (g)
   double length_mm = 0.0;       //!< measured length of the mark
   double deviation_area_mm2 = 0.0;  //!< area between the mark and its fitted line(s)
@@ -30,8 +31,9 @@ struct ResultsTable {
 ResultsTable results_from_runs(const std::vector<simulation::RunResult>& results);
 
 //! Reads a results CSV (docs/figures.md): columns robot, motion, compensated (0/1), acceleration_g,
-//! length_mm, deviation_area_mm2 by header name, other columns ignored; `source` as an optional column
-//! (the same value, simulated or measured, on every row). `source_flag` ("" when not given) must agree with
+//! length_mm, deviation_area_mm2 by header name, other columns ignored; `variant` as an optional column
+//! naming the compensation of compensated rows (each variant is its own series; ignored on rows without
+//! compensation); `source` as an optional column (the same value, simulated or measured, on every row). `source_flag` ("" when not given) must agree with
 //! the column when both exist; with neither the table is refused, so that no figure guesses its provenance.
 //! Errors name the file, line and column (stiffpath::Error).
 ResultsTable load_results_csv(const std::string& path, const std::string& source_flag = "");
