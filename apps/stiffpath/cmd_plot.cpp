@@ -7,18 +7,22 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "joint_robot.hpp"
 #include "progress.hpp"
 #include "robot_flags.hpp"
+#include "twin_flags.hpp"
 #include "stiffpath/compliance/cross_validation.hpp"
 #include "stiffpath/compliance/model_factory.hpp"
 #include "stiffpath/core/csv.hpp"
 #include "stiffpath/core/error.hpp"
+#include "stiffpath/core/output_budget.hpp"
 #include "stiffpath/job/joint_reader.hpp"
 #include "stiffpath/measurement/displacement_table.hpp"
 #include "stiffpath/report/compliance_plots.hpp"
 #include "stiffpath/report/experiment_plots.hpp"
 #include "stiffpath/report/mark_plots.hpp"
 #include "stiffpath/report/run_plots.hpp"
+#include "stiffpath/simulation/cg_lever.hpp"
 #include "stiffpath/simulation/simulator.hpp"
 #include "stiffpath/simulation/twin_models.hpp"
 
@@ -35,13 +39,15 @@ struct PlotOptions {
   std::string input, mark, source;
   double gain = 1.0, magnification = 0.0;
   std::size_t max_points = 4000;
-  bool y_down = false, quiet = false;
+  bool y_down = false, quiet = false, force_robot = false;
 };
 
+//! Most mark points a simulated or scanned mark may hold (20 M points: 320 MB in memory).
+constexpr std::size_t kMaxMarkPoints = 20'000'000;
+
+// The figures' directory, created (a file in the way or no permission: stiffpath::Error naming it).
 std::filesystem::path output_dir(const std::string& dir) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) throw Error(SourceLocation{dir}, "cannot create output directory: " + ec.message());
+  core::create_output_directory(dir);
   return dir;
 }
 
@@ -78,13 +84,14 @@ std::vector<Eigen::Vector2d> read_mark(const std::string& file, bool y_down) {
   const auto x = csv.column("x_mm"), y = csv.column("y_mm");
   std::vector<Eigen::Vector2d> mark;
   while (csv.next()) {
-    if (mark.size() >= 20'000'000) throw Error(csv.where(), "more than 20 million mark points");
+    if (mark.size() >= kMaxMarkPoints) throw Error(csv.where(), "more than 20 million mark points");
     mark.emplace_back(csv.number(x) * 1e-3, (y_down ? -1.0 : 1.0) * csv.number(y) * 1e-3);
   }
   return mark;
 }
 
 void plot_mark_command(const PlotOptions& o) {
+  core::check_output_directory(o.dir);  // before the twin runs, not after
   report::MarkPlotInput input;
   input.label = std::filesystem::path(o.input).filename().string();
   if (o.mark.empty()) {
@@ -93,15 +100,23 @@ void plot_mark_command(const PlotOptions& o) {
                                                " does not apply");
     }
     job::JointReader reader(o.input);
-    kinematics::Robot robot = !o.robot.empty() || reader.mechanism().empty() ? load_robot_flag(o.robot)
-                                                                             : kinematics::load_robot(reader.mechanism());
-    const auto truth = simulation::make_true_compliance(robot);
+    const kinematics::Robot robot = robot_for_joints(o.robot, reader, o.input, o.force_robot, "plots");
+    // The twin as `simulate` runs it by default: the structural C_true, the loaded servo, the CG lever.
+    simulation::SimulationOptions sim;
+    simulation::TrueComplianceOptions truth_options;
+    apply_twin_flags(TwinFlags{}, sim, truth_options);
+    sim.cg_lever = simulation::make_cg_lever(robot);
+    const auto truth = simulation::make_true_compliance(robot, truth_options);
     Progress progress("plot mark: simulating", o.quiet);
     progress.update(0.0, "the twin");
-    const auto run = simulation::simulate([&reader] { return reader.next(); }, robot, truth, {});
+    simulation::simulate([&reader] { return reader.next(); }, robot, truth, sim, [&](const simulation::Stroke& stroke) {
+      if (input.mark_m.size() + stroke.marked.size() > kMaxMarkPoints) {
+        throw Error(SourceLocation{o.input}, "the simulated mark has more than 20 million points: plot a shorter job");
+      }
+      input.commanded_m.insert(input.commanded_m.end(), stroke.commanded.begin(), stroke.commanded.end());
+      input.mark_m.insert(input.mark_m.end(), stroke.marked.begin(), stroke.marked.end());
+    });
     progress.finish();
-    input.commanded_m = run.commanded;
-    input.mark_m = run.marked;
     input.source = "simulated";
   } else {
     if (o.source.empty()) {
@@ -166,16 +181,25 @@ void add_plot_command(CLI::App& app) {
       ->check(CLI::PositiveNumber)->capture_default_str();
   run->add_option("--max-points", o->max_points, "Plotted points per series (peaks kept when decimating)")
       ->check(CLI::Range(100, 100000))->capture_default_str();
+  add_robot_flag(run, o->robot)->description("Robot the joints were made for (default: the preset the file records, "
+                                            "else oc-gu, said on stderr); its joint limits are drawn");
+  run->add_flag("--force-robot", o->force_robot, "Plot a joint file written for another robot anyway");
   add_common(run, *o);
   run->callback([o] {
     const std::string name = "run_" + safe_name(std::filesystem::path(o->input).stem().string());
-    const auto s = report::plot_run(output_dir(o->dir), name, o->input,
-                                    {o->gain, o->max_points, 40, report::parse_style(o->style)});
+    const kinematics::Robot robot = [&] {
+      job::JointReader reader(o->input);
+      return robot_for_joints(o->robot, reader, o->input, o->force_robot, "plots");
+    }();
+    core::check_output_directory(o->dir);
+    report::RunPlotOptions options{o->gain, o->max_points, 40, report::parse_style(o->style), &robot};
+    const auto s = report::plot_run(output_dir(o->dir), name, o->input, options);
     print_written(o->dir, s.figures);
+    fmt::print("robot {} (geometry {}, {})\n", robot.name, robot.geometry_hash().substr(0, 12), robot.source());
     fmt::print("{} samples over {:.4f} s ({} plotted): peak speed {:.1f} mm/s, acceleration {:.2f} m/s², jerk {:.0f} "
-               "m/s³, force {:.1f} N, correction {:.1f} µm\n",
+               "m/s³, force {:.1f} N, correction {:.1f} µm; laser on {:.4f} s at up to {:.0f} % power\n",
                s.samples, s.duration_s, s.plotted, s.peak_speed_mm_s, s.peak_acceleration_m_s2, s.peak_jerk_m_s3,
-               s.peak_force_N, s.peak_correction_um);
+               s.peak_force_N, s.peak_correction_um, s.laser_on_s, s.peak_power * 100.0);
   });
 
   auto* mark = plot->add_subcommand("mark", "A simulated or scanned mark over the commanded path, deviation magnified");
@@ -187,7 +211,9 @@ void add_plot_command(CLI::App& app) {
   mark->add_flag("--y-down", o->y_down, "The mark's y axis points down (simulate --marks-csv, scan frames)");
   mark->add_option("--magnification", o->magnification, "Deviation drawn this many times larger (default: chosen)")
       ->check(CLI::PositiveNumber);
-  add_robot_flag(mark, o->robot);
+  add_robot_flag(mark, o->robot)->description("Robot the joints were made for (default: the preset the file records, "
+                                             "else oc-gu, said on stderr); the twin simulates it");
+  mark->add_flag("--force-robot", o->force_robot, "Simulate a joint file written for another robot anyway");
   mark->add_flag("--quiet", o->quiet, "No progress bar (it is shown only on a terminal anyway)");
   add_common(mark, *o);
   mark->callback([o] { plot_mark_command(*o); });

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "joint_robot.hpp"
 #include "progress.hpp"
 #include "robot_flags.hpp"
 #include "stiffpath/compliance/cross_validation.hpp"
@@ -11,6 +12,7 @@
 #include "stiffpath/core/atomic_file.hpp"
 #include "stiffpath/core/data_ref.hpp"
 #include "stiffpath/core/error.hpp"
+#include "stiffpath/core/output_budget.hpp"
 #include "stiffpath/core/sha256.hpp"
 #include "stiffpath/job/joint_reader.hpp"
 #include "stiffpath/measurement/data_check.hpp"
@@ -29,7 +31,12 @@ struct ReportArgs {
   double gain = 1.0;
   std::string output = "report";
   std::string style = "screen";
-  bool quiet = false;
+  bool quiet = false, force_robot = false;
+};
+
+// What the joint file says about its robot, read before anything is drawn.
+struct JointsRobot {
+  std::string name, geometry_hash;  // empty when the file does not record them
 };
 
 std::string sha_of(const core::DataRef& ref) { return core::sha256_hex(core::read_data(ref)); }
@@ -38,11 +45,14 @@ std::string figure(const std::filesystem::path& dir, const std::string& name, co
   return report::inline_figure(dir / (name + ".svg"), name, caption);
 }
 
-report::Section robot_section(const kinematics::Robot& robot, const ReportArgs& a,
-                              const compliance::LoadedModel* model) {
+report::Section robot_section(const kinematics::Robot& robot, bool defaulted, const ReportArgs& a,
+                              const compliance::LoadedModel* model, const JointsRobot& written_for) {
   std::vector<std::vector<std::string>> rows{
-      {"robot", robot.name + (robot.description.empty() ? "" : " — " + robot.description), ""},
-      {"robot description", robot.source(), robot.file.path.empty() ? "" : sha_of(robot.file)},
+      {"robot", robot.name + (robot.description.empty() ? "" : " — " + robot.description) +
+                    (defaulted ? " (the default robot: no --robot given and no joint file naming one)" : ""),
+       ""},
+      {"robot description", robot.preset ? "preset " + robot.name + " (built into stiffpath)" : robot.source(),
+       robot.file.path.empty() ? "" : sha_of(robot.file)},
       {"geometry (canonical text)", "five-bar, moving mass " + fmt::format("{:g} kg, CG {} {:.1f} mm above G",
                                                                           robot.moving_mass_kg, robot.cg_label,
                                                                           robot.cg_height_m * 1e3),
@@ -57,7 +67,17 @@ report::Section robot_section(const kinematics::Robot& robot, const ReportArgs& 
                                             model->provenance.source + ")",
                     model->provenance.sha256.empty() ? "" : "data " + model->provenance.sha256});
   }
-  if (!a.joints.empty()) rows.push_back({"joint trajectory", a.joints, core::sha256_file_hex(a.joints)});
+  if (!a.joints.empty()) {
+    rows.push_back({"joint trajectory", a.joints, core::sha256_file_hex(a.joints)});
+    const std::string hash = written_for.geometry_hash;
+    const std::string verdict = hash.empty() ? "geometry not recorded"
+                                : hash == robot.geometry_hash() ? "same geometry as the robot above"
+                                                                : "another geometry (--force-robot)";
+    rows.push_back({"joint trajectory written for",
+                    (written_for.name.empty() ? std::string("robot not recorded") : "robot " + written_for.name) + ", " +
+                        verdict,
+                    hash});
+  }
   if (!a.experiment.empty()) {
     const auto csv = (std::filesystem::path(a.experiment) / "results.csv").string();
     rows.push_back({"twin results", csv, core::sha256_file_hex(csv)});
@@ -112,8 +132,9 @@ report::Section model_section(const kinematics::Robot& robot, const measurement:
   return {"model", "Compliance model and cross-validation", html};
 }
 
-report::Section run_section(const ReportArgs& a, const std::filesystem::path& figs, report::Style style) {
-  const auto s = report::plot_run(figs, "run", a.joints, {a.gain, 4000, 40, style});
+report::Section run_section(const ReportArgs& a, const kinematics::Robot& robot, const std::filesystem::path& figs,
+                            report::Style style) {
+  const auto s = report::plot_run(figs, "run", a.joints, {a.gain, 4000, 40, style, &robot});
   std::string html = report::html_table(
       {"quantity", "value"},
       {{"samples", std::to_string(s.samples)},
@@ -122,10 +143,11 @@ report::Section run_section(const ReportArgs& a, const std::filesystem::path& fi
        {"peak path acceleration (planned)", fmt::format("{:.2f} m/s²", s.peak_acceleration_m_s2)},
        {"peak jerk (planned, by differences)", fmt::format("{:.0f} m/s³", s.peak_jerk_m_s3)},
        {"peak D'Alembert force", fmt::format("{:.1f} N", s.peak_force_N)},
-       {"peak correction |p_cmd − p|", fmt::format("{:.1f} µm", s.peak_correction_um)}});
-  html += figure(figs, "run_motion", "Planned and commanded motion, force, predicted deflection and correction "
-                                     "(stiffpath plot run).");
-  html += figure(figs, "run_joints", "Joint angles, velocities and accelerations.");
+       {"peak correction |p_cmd − p|", fmt::format("{:.1f} µm", s.peak_correction_um)},
+       {"laser on", fmt::format("{:.4f} s, up to {:.0f} % power", s.laser_on_s, s.peak_power * 100.0)}});
+  html += figure(figs, "run_motion", "Planned and commanded motion, force, predicted deflection and correction, "
+                                     "laser power (stiffpath plot run).");
+  html += figure(figs, "run_joints", "Joint angles, velocities and accelerations with the robot's limits dashed.");
   return {"run", "The run", html};
 }
 
@@ -146,9 +168,24 @@ report::Section twin_section(const ReportArgs& a, const std::filesystem::path& f
 
 void make_report(const ReportArgs& a) {
   const auto style = report::parse_style(a.style);
-  const auto robot = load_robot_flag(a.robot);
+  // Every input is read and checked before anything is written: the robot (the joint file's, checked
+  // against --robot), the model, the experiment's table; then the output directory.
+  kinematics::Robot robot;
+  JointsRobot written_for;
+  bool defaulted = false;
+  if (!a.joints.empty()) {
+    job::JointReader reader(a.joints);
+    written_for = {reader.mechanism(), reader.geometry_hash()};
+    defaulted = a.robot.empty() && written_for.name.empty();
+    robot = robot_for_joints(a.robot, reader, a.joints, a.force_robot, "reports");
+  } else {
+    defaulted = a.robot.empty();
+    robot = load_robot_flag(a.robot);
+    if (defaulted) fmt::print(stderr, "report: no --robot given; reporting on the default robot '{}'\n", robot.name);
+  }
+  if (!a.experiment.empty()) (void)report::load_results_csv((std::filesystem::path(a.experiment) / "results.csv").string());
+  core::check_output_directory(a.output);
   const std::filesystem::path dir(a.output), figs = dir / "figures";
-  std::filesystem::create_directories(figs);
   Progress progress("report", a.quiet);
   std::vector<report::Section> sections;
   const bool has_data = !robot.compliance.table.path.empty();
@@ -156,7 +193,8 @@ void make_report(const ReportArgs& a) {
   if (has_data || !robot.compliance.model.path.empty() || !a.request.model.empty()) {
     model = std::make_unique<compliance::LoadedModel>(compliance::load_robot_model(robot, a.request));
   }
-  sections.push_back(robot_section(robot, a, model.get()));
+  core::create_output_directory(figs);
+  sections.push_back(robot_section(robot, defaulted, a, model.get(), written_for));
   progress.update(0.1, "data checks");
   if (has_data) {
     const auto table = compliance::robot_table(robot);
@@ -165,11 +203,12 @@ void make_report(const ReportArgs& a) {
     if (model) sections.push_back(model_section(robot, table, *model, figs, style));
   }
   progress.update(0.6, "run");
-  if (!a.joints.empty()) sections.push_back(run_section(a, figs, style));
+  if (!a.joints.empty()) sections.push_back(run_section(a, robot, figs, style));
   progress.update(0.8, "twin");
   if (!a.experiment.empty()) sections.push_back(twin_section(a, figs, style));
   progress.finish();
-  const std::string subtitle = fmt::format("stiffpath {} · robot {}{}{}", STIFFPATH_VERSION, robot.name,
+  const std::string subtitle = fmt::format("stiffpath {} · robot {} (geometry {}){}{}", STIFFPATH_VERSION, robot.name,
+                                           robot.geometry_hash().substr(0, 12),
                                            a.joints.empty() ? "" : " · run " + a.joints,
                                            a.experiment.empty() ? "" : " · twin results " + a.experiment);
   const std::string page = report::html_page("stiffpath report: " + robot.name, subtitle, sections);
@@ -184,7 +223,9 @@ void add_report_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("report", "One self-contained HTML page: provenance, data checks, model, run, twin");
   add_robot_flag(cmd, a->robot);
   add_model_flags(cmd, a->request);
-  cmd->add_option("--joints", a->joints, "A joint trajectory from `stiffpath run` to show (CSV or binary)");
+  cmd->add_option("--joints", a->joints, "A joint trajectory from `stiffpath run` to show (CSV or binary); the report "
+                                         "is on the robot it records unless --robot");
+  cmd->add_flag("--force-robot", a->force_robot, "Report a joint file written for another robot anyway");
   cmd->add_option("--gain", a->gain, "That run's compensation gain")->check(CLI::PositiveNumber)->capture_default_str();
   cmd->add_option("--experiment", a->experiment, "An output directory of `stiffpath experiment` to show");
   cmd->add_option("-o,--output", a->output, "Output directory (report.html, figures/)")->capture_default_str();

@@ -17,12 +17,13 @@ using Vec2 = Eigen::Vector2d;
 // Plotted series, in the data file's column order after t_s (column 1).
 enum Col {
   x_mm, y_mm, xcmd_mm, ycmd_mm, speed_mm_s, speedcmd_mm_s, acc_m_s2, acccmd_m_s2, jerk_m_s3, jerkcmd_m_s3, fx_N, fy_N,
-  dx_um, dy_um, cx_um, cy_um, theta1_rad, theta2_rad, omega1_rad_s, omega2_rad_s, alpha1_rad_s2, alpha2_rad_s2, kCols
+  dx_um, dy_um, cx_um, cy_um, theta1_rad, theta2_rad, omega1_rad_s, omega2_rad_s, alpha1_rad_s2, alpha2_rad_s2,
+  power_pct, kCols
 };
 constexpr const char* kNames[kCols] = {
     "x_mm", "y_mm", "xcmd_mm", "ycmd_mm", "speed_mm_s", "speed_cmd_mm_s", "acc_m_s2", "acc_cmd_m_s2", "jerk_m_s3",
     "jerk_cmd_m_s3", "fx_N", "fy_N", "deflection_x_um", "deflection_y_um", "correction_x_um", "correction_y_um",
-    "theta1_rad", "theta2_rad", "omega1_rad_s", "omega2_rad_s", "alpha1_rad_s2", "alpha2_rad_s2"};
+    "theta1_rad", "theta2_rad", "omega1_rad_s", "omega2_rad_s", "alpha1_rad_s2", "alpha2_rad_s2", "power_pct"};
 
 using Row = std::array<double, kCols>;
 struct Bucket {
@@ -154,6 +155,9 @@ RunPlotSummary plot_run(const std::filesystem::path& dir, const std::string& nam
     row[theta1_rad] = c->q_rad.x(), row[theta2_rad] = c->q_rad.y();
     row[omega1_rad_s] = c->qd_rad_s.x(), row[omega2_rad_s] = c->qd_rad_s.y();
     row[alpha1_rad_s2] = alpha.x(), row[alpha2_rad_s2] = alpha.y();
+    row[power_pct] = c->laser_on ? c->power * 100.0 : 0.0;
+    if (s.samples > 0 && prev.laser_on) s.laser_on_s += c->t_s - prev.t_s;
+    if (c->laser_on) s.peak_power = std::max(s.peak_power, c->power);
     decimated.add(c->t_s, row);
     if ((s.samples == 0 || c->line != prev.line) && lines.size() < 1000000) lines.push_back({c->t_s, c->line});
     s.peak_speed_mm_s = std::max(s.peak_speed_mm_s, row[speed_mm_s]);
@@ -181,14 +185,17 @@ RunPlotSummary plot_run(const std::filesystem::path& dir, const std::string& nam
   const std::string file = name + ".tsv";
   core::write_file_atomically(dir / file, data);
 
-  const std::string source = std::filesystem::path(joints).filename().string();
+  const kinematics::Robot* robot = options.robot;
+  const std::string source =
+      std::filesystem::path(joints).filename().string() +
+      (robot ? fmt::format(" on {} (geometry {})", robot->name, robot->geometry_hash().substr(0, 12)) : std::string());
   const std::string head = fmt::format("set key outside right top\nset grid\nset lmargin 14\nset rmargin 30\n"
                                        "set xrange [{:.6f}:{:.6f}]\n",
                                        t0, prev.t_s);
   const std::string marks_labelled = markers(lines, options.max_line_markers, true);
   const std::string marks = markers(lines, options.max_line_markers, false);
   const std::string defl = file_has_deflection ? "predicted deflection Δ" : fmt::format("Δ = (p − p_cmd)/{:g}", options.gain);
-  std::string motion = head + fmt::format("set multiplot layout 6,1 title {}\n",
+  std::string motion = head + fmt::format("set multiplot layout 7,1 title {}\n",
                                           quote(fmt::format("{}: planned p and commanded p_cmd (G-code lines dotted)", source)));
   motion += panel("position (mm)", {series(x_mm, "x planned", 1, 1), series(xcmd_mm, "x commanded", 1, 2),
                                     series(y_mm, "y planned", 2, 1), series(ycmd_mm, "y commanded", 2, 2)},
@@ -203,19 +210,37 @@ RunPlotSummary plot_run(const std::filesystem::path& dir, const std::string& nam
   motion += panel("deflection, correction (µm)",
                   {series(dx_um, defl + " x", 1, 1), series(dy_um, defl + " y", 2, 1),
                    series(cx_um, "correction x", 1, 2), series(cy_um, "correction y", 2, 2)},
-                  marks, true);
+                  marks, false);
+  motion += "set yrange [-5:105]\n" +
+            panel("laser power (%)", {series(power_pct, "power (0 with the laser off)", 1, 1)}, marks, true) +
+            "set autoscale y\n";
   motion += "unset multiplot\n";
   std::string joint = head + fmt::format("set multiplot layout 3,1 title {}\n",
                                          quote(fmt::format("{}: joint commands (G-code lines dotted)", source)));
   joint += panel("joint angle (rad)", {series(theta1_rad, "θ1", 1, 1), series(theta2_rad, "θ2", 2, 1)}, marks_labelled,
                  false);
-  joint += panel("joint velocity (rad/s)", {series(omega1_rad_s, "ω1", 1, 1), series(omega2_rad_s, "ω2", 2, 1)}, marks,
-                 false);
-  joint += panel(file_has_alpha ? "joint acceleration (rad/s²)" : "joint acceleration, Δω/Δt (rad/s²)",
-                 {series(alpha1_rad_s2, "α1", 1, 1), series(alpha2_rad_s2, "α2", 2, 1)}, marks, true);
+  // The robot's limits as dashed lines: a joint's ±limit, in its colour.
+  const auto limits = [robot](double kinematics::JointLimit::*field, const char* symbol) {
+    std::vector<std::string> out;
+    if (!robot) return out;
+    for (int k = 0; k < 2; ++k) {
+      const double limit = robot->joints[static_cast<std::size_t>(k)].*field;
+      out.push_back(fmt::format("{:.9g} with lines lt {} dt 3 lw 1 title {}", limit, k + 1,
+                                quote(fmt::format("±{}{} limit", symbol, k + 1))));
+      out.push_back(fmt::format("{:.9g} with lines lt {} dt 3 lw 1 notitle", -limit, k + 1));
+    }
+    return out;
+  };
+  std::vector<std::string> omega{series(omega1_rad_s, "ω1", 1, 1), series(omega2_rad_s, "ω2", 2, 1)};
+  std::vector<std::string> alphas{series(alpha1_rad_s2, "α1", 1, 1), series(alpha2_rad_s2, "α2", 2, 1)};
+  for (auto& l : limits(&kinematics::JointLimit::max_velocity_rad_s, "ω")) omega.push_back(l);
+  for (auto& l : limits(&kinematics::JointLimit::max_acceleration_rad_s2, "α")) alphas.push_back(l);
+  joint += panel("joint velocity (rad/s)", omega, marks, false);
+  joint += panel(file_has_alpha ? "joint acceleration (rad/s²)" : "joint acceleration, Δω/Δt (rad/s²)", alphas, marks,
+                 true);
   joint += "unset multiplot\n";
   for (auto* text : {&motion, &joint}) *text = with_data(*text, file);
-  render(dir, Figure{name + "_motion", motion, 1100, 1700, options.style});
+  render(dir, Figure{name + "_motion", motion, 1100, 1950, options.style});
   render(dir, Figure{name + "_joints", joint, 1100, 900, options.style});
   s.figures = {name + "_motion", name + "_joints"};
   return s;

@@ -1,10 +1,12 @@
-// End-to-end tests of the figures: plot run|mark|results|compliance, experiment figures, axes and titles read from the kept scripts and SVG text.
+// End-to-end tests of the figures and the report: plot run|mark|results|compliance, experiment figures, robot checks and bad input, read from the kept scripts, data and SVG text.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
+
+#include <fmt/format.h>
 
 #include "cli_runner.hpp"
 #include "stiffpath/report/gnuplot.hpp"
@@ -81,7 +83,7 @@ TEST(CliPlot, RunShowsThePlannedMotionWithUnitsAndPhysicalPeaks) {
   // planner's acceleration limit is 5 g = 49.03 m/s²; the force is m·a with the platform's 3.6 kg.
   double speed = 0, acc = 0, force = 0;
   for (const auto& row : rows) {
-    ASSERT_EQ(row.size(), 23U);
+    ASSERT_EQ(row.size(), 24U);
     speed = std::max(speed, row[5]);
     acc = std::max(acc, row[7]);
     force = std::max(force, std::hypot(row[11], row[12]));
@@ -100,6 +102,188 @@ TEST(CliPlot, RunShowsThePlannedMotionWithUnitsAndPhysicalPeaks) {
   for (const auto& row : few) few_speed = std::max(few_speed, row[5]), few_acc = std::max(few_acc, row[7]);
   EXPECT_DOUBLE_EQ(few_speed, speed);
   EXPECT_DOUBLE_EQ(few_acc, acc);
+}
+
+// The robot's geometry hash as the joint file's header records it (`# stiffpath joints … geometry_sha256=…`).
+std::string recorded_hash(const std::filesystem::path& joints) {
+  const std::string head = read_text(joints).substr(0, 400);
+  const auto at = head.find("geometry_sha256=");
+  return at == std::string::npos ? std::string() : head.substr(at + 16, 64);
+}
+
+// A joint limit of a preset, read from its robot file's text (not through the library).
+double preset_limit(const std::string& robot, const std::string& key) {
+  const std::string json = read_text(std::string(STIFFPATH_SOURCE_DIR) + "/data/robots/" + robot + ".json");
+  const auto at = json.find("\"" + key + "\"");
+  return at == std::string::npos ? NAN : std::stod(json.substr(json.find(':', at) + 1));
+}
+
+TEST(CliPlot, RunShowsLaserPowerRecordedAlphaAndTheRobotsLimits) {
+  SKIP_WITHOUT_GNUPLOT();
+  TempDir dir;
+  // Half power (S500 of s_max 1000) on a 100 mm line; the run's default: dynamic compensation, smoothed.
+  std::ofstream(dir.path() / "half.gcode") << "G21 G90\nG0 X222.132 Y-50\nM3 S500\nG1 Y50 F60000\nM5\nM2\n";
+  ASSERT_EQ(run_cli("run half.gcode --accel 3g -o half.csv", dir.path()).exit_code, 0);
+  const CliResult r = run_cli("plot run half.csv -o figs", dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto figs = dir.path() / "figs";
+  const std::string gp = read_text(figs / "run_half_motion.gp"), joints_gp = read_text(figs / "run_half_joints.gp");
+  EXPECT_TRUE(contains(gp, "set ylabel 'laser power (%)'"));
+  // The title names the robot and the geometry the joint file records.
+  const std::string hash = recorded_hash(dir.path() / "half.csv");
+  ASSERT_EQ(hash.size(), 64U);
+  EXPECT_TRUE(contains(gp, "half.csv on oc-gu (geometry " + hash.substr(0, 12) + ")")) << hash;
+  EXPECT_TRUE(contains(r.out, "robot oc-gu (geometry " + hash.substr(0, 12)));
+  // oc-gu's limits, from its robot file: ±40 rad/s, ±4000 rad/s² drawn dashed.
+  const double w = preset_limit("oc-gu", "max_velocity_rad_s"), al = preset_limit("oc-gu", "max_acceleration_rad_s2");
+  EXPECT_TRUE(contains(joints_gp, fmt::format("{:.9g} with lines", w)) && contains(joints_gp, fmt::format("{:.9g} with lines", -w)));
+  EXPECT_TRUE(contains(joints_gp, fmt::format("{:.9g} with lines", al)));
+  EXPECT_TRUE(contains(joints_gp, "'joint acceleration (rad/s²)'")) << "α as recorded, not by differences";
+  const auto rows = rows_of(figs / "run_half.tsv");
+  ASSERT_GT(rows.size(), 100U);  // fewer samples than --max-points: every sample, undecimated
+  int on = 0;
+  double alpha_error = 0.0, alpha_peak = 0.0;
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    ASSERT_EQ(rows[k].size(), 24U);
+    const double power = rows[k][23];
+    EXPECT_TRUE(power == 0.0 || std::abs(power - 50.0) < 1e-9) << power;
+    on += power > 0 ? 1 : 0;
+    // The plotted α is the recorded one (the CSV's alpha1_rad_s2 column, same sample), and it is the
+    // rate of the recorded ω: over two steps the mean of ω's slope lies within the range of the three α
+    // samples (mean value theorem), up to the terms the dynamic method drops (≈2 % of the peak).
+    if (k > 0 && k + 1 < rows.size()) {
+      const double dt = rows[k + 1][0] - rows[k - 1][0];
+      const double slope = (rows[k + 1][19] - rows[k - 1][19]) / dt;
+      const auto [lo, hi] = std::minmax({rows[k - 1][21], rows[k][21], rows[k + 1][21]});
+      alpha_error = std::max({alpha_error, lo - slope, slope - hi});
+      alpha_peak = std::max(alpha_peak, std::abs(rows[k][21]));
+    }
+  }
+  std::vector<double> recorded;
+  {
+    std::ifstream csv(dir.path() / "half.csv");
+    std::string line;
+    std::getline(csv, line), std::getline(csv, line);
+    ASSERT_TRUE(contains(line, ",alpha1_rad_s2,")) << line;
+    for (; std::getline(csv, line);) {
+      std::stringstream cells(line);
+      std::string cell;
+      for (int c = 0; c <= 5 && std::getline(cells, cell, ','); ++c) {
+        if (c == 5) recorded.push_back(std::stod(cell));
+      }
+    }
+  }
+  ASSERT_EQ(recorded.size(), rows.size());
+  for (std::size_t k = 0; k < rows.size(); ++k) EXPECT_NEAR(rows[k][21], recorded[k], 1e-6) << k;
+  EXPECT_GT(on, 50);
+  EXPECT_GT(alpha_peak, 10.0);
+  EXPECT_LT(alpha_error, 0.03 * alpha_peak) << "recorded α is dω/dt";
+  EXPECT_TRUE(contains(r.out, "at up to 50 % power"));
+}
+
+TEST(CliPlot, RunAndMarkRefuseAJointFileOfAnotherRobotUnlessForced) {
+  SKIP_WITHOUT_GNUPLOT();
+  TempDir dir;
+  ASSERT_EQ(run_cli("run " + kExamples + "y_motion.gcode --accel 2g -o joints.csv", dir.path()).exit_code, 0);
+  for (const char* what : {"run", "mark"}) {
+    const CliResult refused = run_cli(std::string("plot ") + what + " joints.csv --robot sc-gu -o figs", dir.path());
+    EXPECT_EQ(refused.exit_code, 2) << what;
+    EXPECT_TRUE(contains(refused.err, "joints.csv: ") && contains(refused.err, "written for robot 'oc-gu'") &&
+                contains(refused.err, "--force-robot"))
+        << refused.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "figs")) << "nothing written";
+  }
+  const CliResult forced = run_cli("plot run joints.csv --robot sc-gu --force-robot -o figs", dir.path());
+  ASSERT_EQ(forced.exit_code, 0) << forced.err;
+  EXPECT_TRUE(contains(read_text(dir.path() / "figs" / "run_joints_motion.gp"), "joints.csv on sc-gu"));
+  // A file that records no robot: the default robot, said on stderr, never silently.
+  std::ifstream in(dir.path() / "joints.csv");
+  std::ofstream out(dir.path() / "anon.csv");
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("#", 0) != 0) out << line << "\n";
+  }
+  out.close();
+  const CliResult anon = run_cli("plot run anon.csv -o figs2", dir.path());
+  ASSERT_EQ(anon.exit_code, 0) << anon.err;
+  EXPECT_TRUE(contains(anon.err, "does not record its robot; using the default robot 'oc-gu'")) << anon.err;
+}
+
+TEST(CliPlot, BadInputNamesTheFileAndWritesNothing) {
+  TempDir dir;
+  const CliResult missing = run_cli("plot run nowhere.csv -o figs", dir.path());
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_TRUE(contains(missing.err, "nowhere.csv")) << missing.err;
+  // A results table without the length column: the header line and the missing name.
+  std::ofstream(dir.path() / "cols.csv") << "robot,motion,compensated,acceleration_g,length,deviation_area_mm2,source\n"
+                                            "oc,y,0,1,149.9,0.5,measured\n";
+  const CliResult columns = run_cli("plot results cols.csv -o figs", dir.path());
+  EXPECT_EQ(columns.exit_code, 2);
+  EXPECT_TRUE(contains(columns.err, "cols.csv:1:") && contains(columns.err, "missing column 'length_mm'")) << columns.err;
+  // A negative area on line 3, column 6.
+  std::ofstream(dir.path() / "neg.csv") << "robot,motion,compensated,acceleration_g,length_mm,deviation_area_mm2\n"
+                                           "oc,y,0,1,149.9,0.5\noc,y,1,1,149.9,-0.5\n";
+  const CliResult negative = run_cli("plot results neg.csv --source measured -o figs", dir.path());
+  EXPECT_EQ(negative.exit_code, 2);
+  EXPECT_TRUE(contains(negative.err, "neg.csv:3:") && contains(negative.err, "negative")) << negative.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "figs"));
+  // -o onto a file: refused, the file untouched.
+  std::ofstream(dir.path() / "taken") << "mine\n";
+  std::ofstream(dir.path() / "good.csv") << "robot,motion,compensated,acceleration_g,length_mm,deviation_area_mm2\n"
+                                            "oc,y,0,1,149.9,0.5\n";
+  const CliResult onto = run_cli("plot results good.csv --source measured -o taken", dir.path());
+  EXPECT_EQ(onto.exit_code, 2);
+  EXPECT_TRUE(contains(onto.err, "taken") && contains(onto.err, "not a directory")) << onto.err;
+  EXPECT_EQ(read_text(dir.path() / "taken"), "mine\n");
+  const CliResult report = run_cli("report --robot oc-gu -o taken --quiet", dir.path());
+  EXPECT_EQ(report.exit_code, 2);
+  EXPECT_TRUE(contains(report.err, "not a directory")) << report.err;
+  EXPECT_EQ(read_text(dir.path() / "taken"), "mine\n");
+}
+
+TEST(CliPlot, ResultsKeepEachCompensationVariantApart) {
+  SKIP_WITHOUT_GNUPLOT();
+  TempDir dir;
+  std::ofstream(dir.path() / "v.csv") << "robot,motion,compensated,acceleration_g,length_mm,deviation_area_mm2,variant,source\n"
+                                         "oc,x,0,1,149.0,0.9,,simulated\n"
+                                         "oc,x,1,1,149.5,0.4,thesis,simulated\n"
+                                         "oc,x,1,1,149.8,0.2,default,simulated\n";
+  const CliResult r = run_cli("plot results v.csv -o figs", dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto file = dir.path() / "figs" / "fig_4_10a_x_length.tsv";
+  ASSERT_EQ(rows_of(file, 0).size(), 1U);
+  EXPECT_DOUBLE_EQ(rows_of(file, 1).at(0).at(1), 149.5);
+  EXPECT_DOUBLE_EQ(rows_of(file, 2).at(0).at(1), 149.8);
+  const std::string gp = read_text(dir.path() / "figs" / "fig_4_10a_x_length.gp");
+  EXPECT_TRUE(contains(gp, "'oc with thesis compensation'") && contains(gp, "'oc with default compensation'")) << gp;
+}
+
+TEST(CliReport, ShowsTheJointFilesRobotAndGeometryAndRefusesAnother) {
+  SKIP_WITHOUT_GNUPLOT();
+  TempDir dir;
+  ASSERT_EQ(run_cli("run " + kExamples + "y_motion.gcode --accel 2g --robot sc-gu -o joints.csv", dir.path()).exit_code, 0);
+  const std::string hash = recorded_hash(dir.path() / "joints.csv");
+  ASSERT_EQ(hash.size(), 64U);
+  // No --robot: the report is on the robot the joint file records, not on the default oc-gu.
+  const CliResult r = run_cli("report --joints joints.csv -o rep --quiet", dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string html = read_text(dir.path() / "rep" / "report.html");
+  EXPECT_TRUE(contains(html, "stiffpath report: sc-gu"));
+  EXPECT_TRUE(contains(html, "robot sc-gu, same geometry as the robot above")) << "the joint file's own record";
+  std::size_t hashes = 0;
+  for (auto at = html.find(hash); at != std::string::npos; at = html.find(hash, at + 1)) ++hashes;
+  EXPECT_GE(hashes, 2U) << "the robot's geometry hash and the one the joint file records";
+  EXPECT_TRUE(contains(html, "(geometry " + hash.substr(0, 12) + ")")) << "in the subtitle and the run's figure titles";
+  EXPECT_FALSE(contains(html, "the default robot"));
+  // Another robot than the file's: refused, nothing written.
+  const CliResult other = run_cli("report --robot oc-gu --joints joints.csv -o rep2 --quiet", dir.path());
+  EXPECT_EQ(other.exit_code, 2);
+  EXPECT_TRUE(contains(other.err, "joints.csv: ") && contains(other.err, "--force-robot reports it anyway")) << other.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "rep2"));
+  // No robot at all: the default, said on the page and on stderr.
+  const CliResult plain = run_cli("report -o rep3 --quiet", dir.path());
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_TRUE(contains(plain.err, "no --robot given; reporting on the default robot 'oc-gu'")) << plain.err;
+  EXPECT_TRUE(contains(read_text(dir.path() / "rep3" / "report.html"), "(the default robot"));
 }
 
 TEST(CliPlot, ResultsOfYourOwnScansAreDrawnAsMeasuredWithTheirNumbers) {
