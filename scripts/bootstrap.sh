@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs every Debian package that stiffpath's build, tests, benchmarks and tools need (idempotent).
-# Optional groups, installed only when named: `bootstrap.sh linuxcnc` adds LinuxCNC for its integration tests.
+# Optional groups, installed only when named: `bootstrap.sh linuxcnc` adds LinuxCNC for its integration tests,
+# `bootstrap.sh browser` headless Chromium for the HTML report's browser test.
 set -euo pipefail
 
 packages=(
@@ -16,7 +17,9 @@ for group in "$@"; do
     # LinuxCNC 2.9 in user space (no real-time kernel needed for the tests): halcompile, Makefile.modinc, halrun,
     # halsampler/halstreamer and the linuxcnc Python module. About 87 packages, 69 MB of archives.
     linuxcnc) packages+=(linuxcnc-uspace linuxcnc-uspace-dev) ;;
-    *) echo "bootstrap: unknown package group '$group' (known: linuxcnc)" >&2; exit 2 ;;
+    # Debian's Chromium, run headless by the test labelled browser (docs/figures.md).
+    browser) packages+=(chromium) ;;
+    *) echo "bootstrap: unknown package group '$group' (known: linuxcnc, browser)" >&2; exit 2 ;;
   esac
 done
 

@@ -6,7 +6,10 @@ cd "$(dirname "$0")/.."
 what=${1:-demo}
 jobs=$(nproc 2>/dev/null || echo 2)
 
-if [ "$what" = linuxcnc ]; then bash scripts/bootstrap.sh linuxcnc; else bash scripts/bootstrap.sh; fi
+case "$what" in
+  linuxcnc|browser) bash scripts/bootstrap.sh "$what" ;;
+  *) bash scripts/bootstrap.sh ;;
+esac
 
 build() {  # build <preset>
   cmake --preset "$1" >/dev/null
@@ -54,8 +57,14 @@ case "$what" in
     "${sudo_cmd[@]}" cmake --build --preset dev --target stiffpath_linuxcnc_install_modules
     ctest --preset dev -L 'c_api|linuxcnc'
     ;;
+  browser)
+    # The HTML report in headless Chromium (the test labelled browser; it cannot skip here).
+    cmake --preset dev >/dev/null
+    cmake --build --preset dev -j "$jobs" --target stiffpath_cli test_browser
+    STIFFPATH_REQUIRE_BROWSER=1 ctest --preset dev -L browser
+    ;;
   *)
-    echo "usage: scripts/dev.sh demo|test|asan|bench|linuxcnc|fuzz|tsan" >&2
+    echo "usage: scripts/dev.sh demo|test|asan|bench|linuxcnc|fuzz|tsan|browser" >&2
     exit 2
     ;;
 esac

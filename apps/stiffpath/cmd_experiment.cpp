@@ -8,6 +8,7 @@
 
 #include "bounded.hpp"
 #include "commands.hpp"
+#include "progress.hpp"
 #include "stiffpath/core/output_budget.hpp"
 #include "stiffpath/core/atomic_file.hpp"
 #include "stiffpath/report/experiment_plots.hpp"
@@ -26,7 +27,8 @@ struct ExperimentArgs {
   std::vector<std::string> paths;
   bool motions_given = false;
   bool robots_given = false;
-  bool no_plots = false;
+  bool no_plots = false, quiet = false;
+  std::string style = "screen";
   TwinFlags twin;
   bool robustness = false;
   simulation::RobustnessOptions robust;
@@ -52,7 +54,10 @@ void robustness(ExperimentArgs& a, const std::filesystem::path& dir) {
     fmt::print("\ngnuplot not found: figures skipped\n");
     return;
   }
-  fmt::print("\nfigures ({}): {}\n", dir.string(), fmt::join(report::write_robustness_figures(dir, rows), ", "));
+  const auto figures_dir = dir / "figures";
+  core::create_output_directory(figures_dir);
+  const auto figures = report::write_robustness_figures(figures_dir, rows, report::parse_style(a.style));
+  fmt::print("\nfigures ({}, SVG, PNG, gnuplot script and data each): {}\n", figures_dir.string(), fmt::join(figures, ", "));
 }
 
 void experiment(ExperimentArgs a) {
@@ -67,7 +72,10 @@ void experiment(ExperimentArgs a) {
   if (!a.paths.empty() && !a.motions_given) a.options.motions.clear();  // only the user's paths
   core::check_output_directory(a.output);  // before the runs, not after them (nothing is created yet)
   const auto start = std::chrono::steady_clock::now();
-  const auto results = simulation::run_experiment(a.options);
+  const auto style = report::parse_style(a.style);
+  Progress progress("experiment", a.quiet);
+  const auto results = simulation::run_experiment(a.options, progress.callback());
+  progress.finish();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   core::create_output_directory(dir);
   core::write_file_atomically(dir / "results.csv", simulation::experiment_csv(results));
@@ -79,12 +87,13 @@ void experiment(ExperimentArgs a) {
       fmt::print("\ngnuplot not found: figures skipped\n");
       return;
     }
-    // The thesis's figures compare without and with the thesis's method.
-    std::vector<simulation::RunResult> thesis;
-    std::copy_if(results.begin(), results.end(), std::back_inserter(thesis),
-                 [](const auto& r) { return !r.spec.compensated || r.spec.variant == "thesis"; });
-    const auto figures = report::write_experiment_figures(dir, thesis);
-    fmt::print("\nfigures ({}): {}\n", dir.string(), fmt::join(figures, ", "));
+    const auto figures_dir = dir / "figures";
+    core::create_output_directory(figures_dir);
+    // Without compensation and each variant run, as its own series, so that `plot results` on results.csv
+    // draws the same figures.
+    const auto figures = report::write_results_figures(figures_dir, report::results_from_runs(results), style);
+    fmt::print("\nfigures ({}, SVG, PNG, gnuplot script and data each): {}\n", figures_dir.string(),
+               fmt::join(figures, ", "));
   }
 }
 }  // namespace
@@ -92,7 +101,7 @@ void experiment(ExperimentArgs a) {
 void add_experiment_command(CLI::App& app) {
   auto a = std::make_shared<ExperimentArgs>();
   auto* cmd = app.add_subcommand("experiment", "The thesis's test matrix on the digital twin of robots (figs. 4.9-4.11)");
-  cmd->add_option("-o,--output", a->output, "Output directory (results.csv, summary.md, figures)")->capture_default_str();
+  cmd->add_option("-o,--output", a->output, "Output directory (results.csv, summary.md, figures/)")->capture_default_str();
   auto* robots = cmd->add_option("--robots,--robot,--mechanisms", a->options.robots, "Presets or robot files to run")
                      ->capture_default_str();
   auto* motions = cmd->add_option("--motions", a->options.motions,
@@ -131,6 +140,9 @@ void add_experiment_command(CLI::App& app) {
       ->check(within(0.0, 1000.0, ""))->capture_default_str();
   cmd->add_option("--max-runs", a->robust.max_runs, "Robustness: refuse sweeps with more runs")
       ->check(CLI::Range(1, 100000))->capture_default_str();
+  cmd->add_option("--style", a->style, "Figures for the screen (colour) or paper (black and white, larger fonts)")
+      ->check(CLI::IsMember({"screen", "paper"}))->capture_default_str();
+  cmd->add_flag("--quiet", a->quiet, "No progress bar (it is shown only on a terminal anyway)");
   cmd->callback([a, motions, robots] {
     a->motions_given = motions->count() > 0;
     a->robots_given = robots->count() > 0;

@@ -9,6 +9,7 @@
 
 #include "commands.hpp"
 #include "job_budget.hpp"
+#include "progress.hpp"
 #include "motion_flags.hpp"
 #include "robot_flags.hpp"
 #include "stiffpath/core/error.hpp"
@@ -27,7 +28,7 @@ struct PlanArgs {
   std::string job;
   std::string output;
   std::string robot;
-  bool json = false;
+  bool json = false, quiet = false;
   std::uint64_t max_samples = default_max_samples;
   MotionFlags motion;
 };
@@ -44,11 +45,14 @@ nlohmann::json warnings_json(const std::vector<motion::GcodeWarning>& warnings) 
 // assembly mode, joint position limits), naming its G-code line, time and point.
 class WorkspaceCheck final : public motion::SampleSource {
  public:
-  WorkspaceCheck(motion::SampleSource& inner, const kinematics::Robot& robot, std::string job)
-      : inner_(inner), robot_(robot), five_bar_(robot.five_bar()), job_(std::move(job)) {}
+  WorkspaceCheck(motion::SampleSource& inner, const kinematics::Robot& robot, std::string job, Progress& progress,
+                 std::uint64_t total)
+      : inner_(inner), robot_(robot), five_bar_(robot.five_bar()), job_(std::move(job)), progress_(progress),
+        total_(std::max<std::uint64_t>(total, 1)) {}
   std::optional<motion::TrajectorySample> next() override {
     auto s = inner_.next();
     if (!s) return s;
+    if (++count_ % 4096 == 0) progress_.update(static_cast<double>(count_) / static_cast<double>(total_));
     const auto r = five_bar_.solve_inverse(s->position_m);
     if (r.status != kinematics::Reach::ok || !robot_.within_limits(r.q)) {
       throw Error(SourceLocation{job_, s->line},
@@ -64,18 +68,24 @@ class WorkspaceCheck final : public motion::SampleSource {
   const kinematics::Robot& robot_;
   kinematics::FiveBar five_bar_;
   std::string job_;
+  Progress& progress_;
+  std::uint64_t total_, count_ = 0;
 };
 
 void run_plan(const PlanArgs& a) {
   const auto robot = load_robot_flag(a.robot);
   motion::PlanOptions options = plan_options(a.motion, robot);
   if (a.json) options.gcode.on_warnings = nullptr;  // they go into the JSON document
-  (void)check_job_budget(a.job, options, a.max_samples, a.output, {csv_row_bytes, 0.0, "CSV"}, "plan");
+  Progress progress("plan", a.quiet);
+  progress.update(0.0, "sizing the plan");
+  const std::uint64_t total =
+      check_job_budget(a.job, options, a.max_samples, a.output, {csv_row_bytes, 0.0, "CSV"}, "plan").samples;
   motion::TrajectoryStream planned(a.job, options);
-  WorkspaceCheck stream(planned, robot, a.job);
+  WorkspaceCheck stream(planned, robot, a.job, progress, total);
   const motion::TrajectorySummary summary = a.output.empty()
                                                 ? motion::summarize(stream, options.rate_hz)
                                                 : motion::write_trajectory_csv(stream, options.rate_hz, a.output);
+  progress.finish();
   const auto& planner = planned.planner_statistics();
   // With -o - the samples own standard output, so the summary goes to standard error.
   std::FILE* info = a.output == "-" ? stderr : stdout;
@@ -131,6 +141,7 @@ void add_plan_command(CLI::App& app) {
   cmd->add_option("-o,--output", a->output, "Write the samples to this CSV file (- for standard output)");
   add_max_samples_flag(cmd, a->max_samples);
   cmd->add_flag("--json", a->json, "Print the summary as JSON (errors too, on stderr)");
+  cmd->add_flag("--quiet", a->quiet, "No progress bar (it is shown only on a terminal anyway)");
   cmd->callback([a] { run_plan(*a); });
 }
 

@@ -1,6 +1,4 @@
 // `stiffpath run`: the main job — G-code to compensated joint commands at 2 kHz (thesis fig. 4.3).
-#include <unistd.h>
-
 #include <cstdio>
 #include <fmt/format.h>
 #include <fstream>
@@ -10,6 +8,7 @@
 #include "bounded.hpp"
 #include "commands.hpp"
 #include "job_budget.hpp"
+#include "progress.hpp"
 #include "motion_flags.hpp"
 #include "robot_flags.hpp"
 #include "stiffpath/compensation/tip_modes.hpp"
@@ -35,7 +34,7 @@ struct RunArgs {
   std::string outside;
   std::string output;
   std::string format = "csv";
-  bool json = false;
+  bool json = false, quiet = false;
   std::uint64_t max_samples = default_max_samples;
   MotionFlags motion;
 };
@@ -55,16 +54,13 @@ int count_lines(const std::string& path) {
   return lines;
 }
 
-// A progress bar on stderr for long jobs when stderr is a terminal.
-job::Progress progress_bar(const std::string& job) {
-  if (!::isatty(2)) return {};
-  const int total = count_lines(job);
-  if (total < 2000) return {};
-  return [total](std::uint64_t samples, int line) {
-    const double f = std::min(1.0, static_cast<double>(line) / total);
-    const int filled = static_cast<int>(f * 30);
-    std::fprintf(stderr, "\r[%-30s] %3.0f%%  line %d/%d  %.1f M samples", std::string(static_cast<std::size_t>(filled), '#').c_str(),
-                 f * 100, line, total, static_cast<double>(samples) / 1e6);
+// The job's progress as the share of its G-code lines done, on the shared progress bar.
+job::Progress progress_bar(const std::string& job, Progress& bar) {
+  if (!bar.enabled()) return {};
+  const int total = std::max(count_lines(job), 1);
+  return [total, &bar](std::uint64_t samples, int line) {
+    bar.update(static_cast<double>(line) / total, fmt::format("line {}/{}  {:.1f} M samples", line, total,
+                                                              static_cast<double>(samples) / 1e6));
   };
 }
 
@@ -138,10 +134,11 @@ void run(const RunArgs& a) {
   if (!a.output.empty()) {
     writer = job::make_joint_writer(format, a.output, options.rate_hz, {robot.name, robot.geometry_hash()});
   }
-  const auto progress = progress_bar(a.job);
+  Progress bar("run", a.quiet);
+  const auto progress = progress_bar(a.job, bar);
   const job::JobSummary s = job::run_job(stream, compensator, writer.get(), a.job, options.rate_hz, acceleration, progress,
                                             &filters);
-  if (progress) std::fprintf(stderr, "\n");
+  bar.finish();
 
   // With -o - the joint records own standard output, so the summary goes to standard error.
   std::FILE* info = a.output == "-" ? stderr : stdout;
@@ -226,6 +223,7 @@ void add_run_command(CLI::App& app) {
   add_max_samples_flag(cmd, a->max_samples);
   cmd->add_option("--format", a->format, "csv or bin")->capture_default_str();
   cmd->add_flag("--json", a->json, "Print the summary as JSON");
+  cmd->add_flag("--quiet", a->quiet, "No progress bar (it is shown only on a terminal anyway)");
   add_motion_flags(cmd, a->motion);
   cmd->callback([a] { run(*a); });
 }

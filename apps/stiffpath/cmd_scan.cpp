@@ -40,8 +40,8 @@ int parse_sides(const std::string& shape) {
 
 // "--roi X,Y,W,H" in mm from the image's top-left corner, or with a unit suffix "…mm" / "…px".
 struct Roi {
-  double v[4];
-  bool px;
+  double v[4] = {0.0, 0.0, 0.0, 0.0};  // x, y, width, height
+  bool px = false;  // in pixels rather than mm
 };
 
 Roi parse_roi(const std::string& text) {

@@ -1,5 +1,7 @@
 // `stiffpath simulate`: a joint trajectory from `stiffpath run` through the digital twin, measured like the thesis's marks.
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <fmt/format.h>
 #include <iostream>
 #include <memory>
@@ -7,10 +9,13 @@
 
 #include "bounded.hpp"
 #include "commands.hpp"
+#include "joint_robot.hpp"
+#include "progress.hpp"
 #include "robot_flags.hpp"
 #include "twin_flags.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/job/joint_reader.hpp"
+#include "stiffpath/job/joint_writer.hpp"
 #include "stiffpath/core/atomic_file.hpp"
 #include "stiffpath/simulation/cg_lever.hpp"
 #include "stiffpath/simulation/run_metrics.hpp"
@@ -27,9 +32,28 @@ struct SimulateArgs {
   TwinFlags twin;
   simulation::SimulationOptions sim;
   std::string marks_csv;
-  bool json = false;
+  bool json = false, quiet = false;
   bool force_robot = false;
 };
+
+// Records in a joint file, for the progress bar: from the size for the binary format (versions 1 and 2),
+// lines for CSV.
+double record_count(const std::string& path, const job::JointReader& reader) {
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(path, ec);
+  if (ec) return 1.0;
+  if (reader.binary()) {
+    const bool v1 = reader.version() == 1;
+    const double header = v1 ? job::kBinaryV1HeaderBytes : job::kBinaryHeaderBytes;
+    const double record = v1 ? job::kBinaryV1RecordBytes : job::kBinaryRecordBytes;
+    return std::max(1.0, (static_cast<double>(bytes) - header) / record);
+  }
+  std::ifstream in(path, std::ios::binary);
+  double lines = 0;
+  char buffer[1 << 16];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) lines += static_cast<double>(std::count(buffer, buffer + in.gcount(), '\n'));
+  return std::max(1.0, lines - 1);
+}
 
 // The laser's mark as x_mm, y_mm in marking order, y flipped to the scan's downward axis, so that
 // `stiffpath render-scan --path-csv` draws it as the paper would show it. Written stroke by stroke.
@@ -44,41 +68,6 @@ class MarksFile {
  private:
   core::AtomicFile file_;
 };
-
-// The robot to simulate: --robot, else the one the file records (a preset), else oc-gu. A file written
-// for another robot (name or geometry) is refused unless --force-robot.
-kinematics::Robot pick_robot(const SimulateArgs& a, const job::JointReader& reader) {
-  const std::string& written_for = reader.mechanism();
-  kinematics::Robot robot;
-  if (!a.robot.empty()) {
-    robot = kinematics::load_robot(a.robot);
-  } else if (!written_for.empty()) {
-    const auto presets = kinematics::preset_names();
-    if (std::find(presets.begin(), presets.end(), written_for) == presets.end()) {
-      throw Error(SourceLocation{a.joints},
-                  fmt::format("the joint file was written for robot '{}', which is not a preset: name its robot file "
-                              "with --robot",
-                              written_for));
-    }
-    robot = kinematics::load_robot(written_for);
-  } else {
-    robot = load_robot_flag("");
-    // Only files written before joint files recorded their robot get here: say which robot is assumed.
-    fmt::print(stderr, "warning: {}: the joint file does not record its robot; simulating it on {} (name another with --robot)\n",
-               a.joints, robot.name);
-  }
-  const std::string& hash = reader.geometry_hash();
-  const bool other_name = !written_for.empty() && written_for != robot.name;
-  const bool other_geometry = !hash.empty() && hash != robot.geometry_hash();
-  if ((other_name || other_geometry) && !a.force_robot) {
-    throw Error(SourceLocation{a.joints},
-                fmt::format("the joint file was written for robot '{}' (geometry {}), not for '{}' (geometry {}, {}); "
-                            "--force-robot simulates it anyway",
-                            written_for, hash.empty() ? "not recorded" : hash.substr(0, 12), robot.name,
-                            robot.geometry_hash().substr(0, 12), robot.source()));
-  }
-  return robot;
-}
 
 nlohmann::json mm(double value_m, bool valid = true) { return valid ? nlohmann::json(tidy(value_m * 1e3)) : nlohmann::json(nullptr); }
 
@@ -98,7 +87,7 @@ void put_metrics(nlohmann::json& j, const simulation::RunMetrics& m, bool path_a
 
 void simulate(const SimulateArgs& a) {
   job::JointReader reader(a.joints);
-  const kinematics::Robot robot = pick_robot(a, reader);
+  const kinematics::Robot robot = robot_for_joints(a.robot, reader, a.joints, a.force_robot, "simulates");
   simulation::TrueComplianceOptions truth_options = a.truth;
   simulation::SimulationOptions sim = a.sim;
   apply_twin_flags(a.twin, sim, truth_options);
@@ -108,12 +97,20 @@ void simulate(const SimulateArgs& a) {
   std::optional<MarksFile> marks;
   if (!a.marks_csv.empty()) marks.emplace(a.marks_csv);
   std::size_t marked_points = 0;
+  Progress progress("simulate", a.quiet);
+  const double total = progress.enabled() ? record_count(a.joints, reader) : 1.0;
+  double done = 0;
   const simulation::SimulationResult run = simulation::simulate(
-      [&reader] { return reader.next(); }, robot, truth, sim, [&](const simulation::Stroke& stroke) {
+      [&] {
+        if (++done == 1 || static_cast<long>(done) % 2048 == 0) progress.update(done / total);
+        return reader.next();
+      },
+      robot, truth, sim, [&](const simulation::Stroke& stroke) {
         meter.add(stroke);
         marked_points += stroke.marked.size();
         if (marks) marks->add(stroke);
       });
+  progress.finish();
   const simulation::RunMetrics m = meter.totals(run);
   if (marks) marks->commit();
   if (a.json) {
@@ -181,6 +178,7 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_option("--marks-csv", a->marks_csv, "Also write the mark (x_mm, y_mm, y down) for `render-scan --path-csv`");
   cmd->add_flag("--force-robot", a->force_robot, "Simulate a joint file written for another robot anyway");
   cmd->add_flag("--json", a->json, "Print the metrics as JSON");
+  cmd->add_flag("--quiet", a->quiet, "No progress bar (it is shown only on a terminal anyway)");
   cmd->callback([a] { simulate(*a); });
 }
 

@@ -96,6 +96,7 @@ int main(int argc, char** argv) {
   stiffpath::cli::add_render_scan_command(app);
   stiffpath::cli::add_simulate_command(app);
   stiffpath::cli::add_experiment_command(app);
+  stiffpath::cli::add_report_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -10,7 +10,7 @@
 namespace stiffpath::report {
 
 double plot_compliance_map(const std::filesystem::path& dir, const std::string& name, const compliance::Model& model,
-                           const std::string& title, double margin_m) {
+                           const std::string& title, double margin_m, Style style) {
   const auto b = model.bounds();
   const double x0 = b.x_min - margin_m, x1 = b.x_max + margin_m, y0 = b.y_min - margin_m, y1 = b.y_max + margin_m;
   std::string map, axes;
@@ -38,19 +38,24 @@ double plot_compliance_map(const std::filesystem::path& dir, const std::string& 
   const double scale = largest > 0 ? 8.0 / largest : 1.0;
   Figure fig{name,
              fmt::format("set title {}\nset xlabel 'x (mm)'\nset ylabel 'y (mm)'\nset size ratio -1\n"
-                         "set key below\nset cblabel 'largest compliance eigenvalue (um/N)'\nset view map\nset palette rgb 33,13,10\n"
+                         "unset key\nset cblabel 'largest compliance eigenvalue (µm/N)'\nset view map\n{}"
+                         "set label 1 'bars: principal directions, length ∝ compliance' at screen 0.5,0.025 center\n"
                          "set xrange [{}:{}]\nset yrange [{}:{}]\n"
                          "splot {} using 1:2:3 with pm3d notitle, \\\n"
                          "  {} using ($1-$3*{s}):($2-$4*{s}):(0):($3*2*{s}):($4*2*{s}):(0) with vectors nohead lw 2 "
-                         "lc rgb 'black' title 'principal directions (length ~ compliance)'",
-                         quote(title), x0 * 1e3, x1 * 1e3, y0 * 1e3, y1 * 1e3, quote(name + ".tsv"),
-                         quote(name + "_axes.tsv"), fmt::arg("s", scale))};
+                         "lc rgb 'black' notitle",
+                         quote(title),
+                         style == Style::paper ? "set palette defined (0 'white', 1 '#8c8c8c')\n"
+                                               : "set palette rgb 33,13,10\n",
+                         x0 * 1e3, x1 * 1e3, y0 * 1e3, y1 * 1e3, quote(name + ".tsv"),
+                         quote(name + "_axes.tsv"), fmt::arg("s", scale)),
+             900, 700, style};
   render(dir, fig);
   return largest;
 }
 
 void plot_cross_validation(const std::filesystem::path& dir, const std::string& name,
-                           const compliance::CvReport& report) {
+                           const compliance::CvReport& report, Style style) {
   std::string data;
   for (std::size_t m = 0; m < report.methods.size(); ++m) {
     data += "# " + report.methods[m].method + "\n";
@@ -70,14 +75,14 @@ void plot_cross_validation(const std::filesystem::path& dir, const std::string& 
   for (std::size_t m = 0; m < report.methods.size(); ++m) {
     const auto& method = report.methods[m];
     commands += fmt::format(
-        "set title {}\nset xlabel 'measured (um)'\nset ylabel 'predicted (um)'\nset key top left\n"
+        "set title {}\nset xlabel 'measured (µm)'\nset ylabel 'predicted (µm)'\nset key top left\n"
         "plot x with lines lc rgb 'gray' notitle, {} index {} using 1:(strcol(3) eq 'x' ? $2 : 1/0) with points pt 7 "
         "title 'dx', '' index {} using 1:(strcol(3) eq 'y' ? $2 : 1/0) with points pt 5 title 'dy'\n",
-        quote(fmt::format("{}: mean {:.1f} um over {} points", method.method, method.mean_um, method.predicted)),
+        quote(fmt::format("{}: mean {:.1f} µm over {} points", method.method, method.mean_um, method.predicted)),
         quote(name + ".tsv"), m, m);
   }
   commands += "unset multiplot";
-  render(dir, Figure{name, commands, 1350, 900});
+  render(dir, Figure{name, commands, 1350, 900, style});
 }
 
 }  // namespace stiffpath::report

@@ -10,7 +10,7 @@
 namespace stiffpath::report {
 
 std::vector<std::string> write_robustness_figures(const std::filesystem::path& dir,
-                                                  const std::vector<simulation::RobustnessRow>& rows) {
+                                                  const std::vector<simulation::RobustnessRow>& rows, Style style) {
   std::vector<std::string> motions, variants, conditions;
   const auto add = [](std::vector<std::string>& v, const std::string& s) {
     if (std::find(v.begin(), v.end(), s) == v.end()) v.push_back(s);
@@ -48,8 +48,9 @@ std::vector<std::string> write_robustness_figures(const std::filesystem::path& d
     }
     Figure figure;
     figure.name = "robustness_" + motion;
+    figure.style = style;
     figure.commands = fmt::format(
-        "set title {}\nset ylabel 'worst AT_p over seeds (um)'\nset grid\nset key outside right\n"
+        "set title {}\nset ylabel 'worst AT_p over seeds (µm)'\nset grid\nset key outside right\n"
         "set xtics rotate by -40\nset logscale y\nset bmargin 8\nplot {}\n",
         quote("simulated: " + motion + ", compensation off nominal (one factor at a time)"), plots);
     render(dir, figure);

@@ -102,7 +102,7 @@ RunResult run_once(const RunSpec& spec, const kinematics::Robot& robot, const Tw
   return out;
 }
 
-std::vector<RunResult> run_experiment(const ExperimentOptions& options) {
+std::vector<RunResult> run_experiment(const ExperimentOptions& options, const std::function<void(double)>& progress) {
   std::map<std::string, TwinModels> models;  // one truth and one fitted model per robot data
   std::vector<RunResult> results;
   for (const auto& name : options.robots) {
@@ -114,10 +114,13 @@ std::vector<RunResult> run_experiment(const ExperimentOptions& options) {
     for (const auto& path : options.paths) motions.push_back(path.name);
     std::vector<std::pair<bool, std::string>> configs{{false, "thesis"}};
     for (const auto& v : options.variants) configs.emplace_back(true, v);
+    const double runs = static_cast<double>(options.robots.size() * configs.size() * motions.size() *
+                                            options.accelerations_g.size());
     for (const auto& [compensated, variant] : configs) {
       for (const auto& motion : motions) {
         for (double g : options.accelerations_g) {
           results.push_back(run_once({robot.name, motion, g, compensated, variant}, robot, twin, options));
+          if (progress) progress(static_cast<double>(results.size()) / runs);
         }
       }
     }
@@ -136,10 +139,10 @@ std::string experiment_csv(const std::vector<RunResult>& results) {
   std::string out =
       "robot,rows,cg,compensated,motion,acceleration_g,duration_s,length_mm,commanded_length_mm,"
       "length_error_mm,deviation_area_mm2,max_deviation_mm,path_accuracy_mm,cornering_round_off_mm,"
-      "cornering_overshoot_mm,residual_vibration_mm,peak_deflection_mm,variant\n";
+      "cornering_overshoot_mm,residual_vibration_mm,peak_deflection_mm,variant,source\n";
   for (const auto& r : results) {
     const auto& m = r.metrics;
-    out += fmt::format("{},{},{},{},{},{:g},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{},{},{:.6f},{:.6f},{}\n",
+    out += fmt::format("{},{},{},{},{},{:g},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{},{},{:.6f},{:.6f},{},simulated\n",
                        r.spec.robot, r.rows, r.cg_label, r.spec.compensated ? 1 : 0, r.spec.motion,
                        r.spec.acceleration_g, r.duration_s, m.length_m * 1e3, m.commanded_length_m * 1e3,
                        m.length_error_m * 1e3, m.deviation_area_m2 * 1e6, m.max_deviation_m * 1e3,

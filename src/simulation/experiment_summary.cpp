@@ -1,4 +1,4 @@
-// The experiment's short summary: what compensation removed, per configuration, at the highest acceleration.
+// The experiment's summary: what compensation removed, per configuration, one table per acceleration.
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
@@ -25,11 +25,7 @@ std::string removed(double without, double with) {
   return fmt::format("{:.0f} %", 100.0 * (1.0 - std::abs(with) / std::abs(without)));
 }
 
-}  // namespace
-
-std::string experiment_summary(const std::vector<RunResult>& results) {
-  double g = 0.0;
-  for (const auto& r : results) g = std::max(g, r.spec.acceleration_g);
+std::string summary_at(const std::vector<RunResult>& results, double g) {
   std::string out = fmt::format(
       "At {:g} g, without → with compensation:\n\n"
       "| robot | motion | compensation | length error (mm) | removed | max deviation (mm) | removed | deviation area "
@@ -53,6 +49,18 @@ std::string experiment_summary(const std::vector<RunResult>& results) {
                        removed(a.max_deviation_m, b.max_deviation_m), a.deviation_area_m2 * 1e6,
                        b.deviation_area_m2 * 1e6, a.residual_vibration_m * 1e3, b.residual_vibration_m * 1e3);
   }
+  return out;
+}
+
+}  // namespace
+
+std::string experiment_summary(const std::vector<RunResult>& results) {
+  std::vector<double> levels;
+  for (const auto& r : results) levels.push_back(r.spec.acceleration_g);
+  std::sort(levels.begin(), levels.end());
+  levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
+  std::string out;
+  for (const double g : levels) out += (out.empty() ? "" : "\n") + summary_at(results, g);
   return out;
 }
 

@@ -222,8 +222,8 @@ TEST(CliRobotRefusals, AJointFileWithoutItsRobotSaysWhichRobotIsAssumed) {
   write_text(w.dir / "bare.csv", rest.str());
   const CliResult assumed = w.run("simulate bare.csv --json");
   ASSERT_EQ(assumed.exit_code, 0) << assumed.err;
-  EXPECT_EQ(assumed.err, "warning: bare.csv: the joint file does not record its robot; simulating it on oc-gu "
-                         "(name another with --robot)\n");
+  EXPECT_EQ(assumed.err, "warning: bare.csv: the joint file does not record its robot; using the default robot "
+                         "'oc-gu' (name another with --robot)\n");
   // Named, or recorded in the file, there is nothing to warn about.
   EXPECT_EQ(w.run("simulate bare.csv --robot oc-gu --json").err, "");
   EXPECT_EQ(w.run("simulate j.csv --json").err, "");

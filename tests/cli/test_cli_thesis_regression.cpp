@@ -117,8 +117,9 @@ TEST(CliThesisRegression, TheExperimentMatrixIsUnchanged) {
                               "--variants thesis",
                               dir.path());
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  // The first two columns were renamed (mechanism, build → robot, rows); the values are the same. The last
-  // column, variant, is new (it names the compensation).
+  // The first two columns were renamed (mechanism, build → robot, rows); the values are the same. Two
+  // last columns are new: variant (the compensation: "thesis" when compensated, empty without) and source
+  // ("simulated" on every row).
   const auto read = [](const std::filesystem::path& path) {
     std::ifstream file(path);
     std::vector<std::string> rows;
@@ -127,11 +128,24 @@ TEST(CliThesisRegression, TheExperimentMatrixIsUnchanged) {
   };
   auto now = read(dir / "exp" / "results.csv");
   const auto before = read(kReference / "experiment_results.csv");
-  for (auto& row : now) row = row.substr(0, row.rfind(','));  // drop the variant column
   ASSERT_EQ(now.size(), 121U);
   ASSERT_EQ(now.size(), before.size());
+  std::vector<std::string> tails(now.size());
+  for (std::size_t k = 0; k < now.size(); ++k) {
+    const auto cut = now[k].rfind(',', now[k].rfind(',') - 1);  // before "variant,source"
+    tails[k] = now[k].substr(cut + 1);
+    now[k] = now[k].substr(0, cut);
+  }
+  EXPECT_EQ(tails[0], "variant,source");
   EXPECT_EQ(now[0].substr(now[0].find(",cg,")), before[0].substr(before[0].find(",cg,")));
-  for (std::size_t k = 1; k < now.size(); ++k) EXPECT_EQ(now[k], before[k]) << k;
+  for (std::size_t k = 1; k < now.size(); ++k) {
+    EXPECT_EQ(now[k], before[k]) << k;
+    std::stringstream cells(now[k]);
+    std::string cell;
+    for (int c = 0; c < 4; ++c) std::getline(cells, cell, ',');
+    const bool compensated = cell == "1";  // the 4th cell, compensated
+    EXPECT_EQ(tails[k], compensated ? "thesis,simulated" : ",simulated") << k;
+  }
 }
 
 TEST(CliThesisRegression, CrossValidationKinematicsAndPredictionsAreUnchanged) {

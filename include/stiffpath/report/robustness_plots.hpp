@@ -5,14 +5,16 @@
 #include <string>
 #include <vector>
 
+#include "stiffpath/report/gnuplot.hpp"
 #include "stiffpath/simulation/robustness.hpp"
 
 namespace stiffpath::report {
 
 //! Writes robustness_<motion>.tsv (condition label, then the worst AT_p in µm of each compensation) and
-//! renders robustness_<motion> (SVG + PNG) per motion. Returns the figure names. Throws stiffpath::Error
-//! when gnuplot fails.
+//! renders robustness_<motion> (SVG + PNG + the kept script .gp) per motion. Returns the figure names.
+//! Throws stiffpath::Error when gnuplot fails.
 std::vector<std::string> write_robustness_figures(const std::filesystem::path& dir,
-                                                  const std::vector<simulation::RobustnessRow>& rows);
+                                                  const std::vector<simulation::RobustnessRow>& rows,
+                                                  Style style = Style::screen);
 
 }  // namespace stiffpath::report

@@ -1,6 +1,7 @@
 // The thesis's dynamic test matrix (§4.5) on the digital twin: plan → compensate → simulate → measure, in process.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -96,13 +97,16 @@ RunResult run_once(const RunSpec& spec, const kinematics::Robot& robot, const Tw
 
 //! Runs the whole matrix robots × {without, variants…} × motions × accelerations (180 runs by default),
 //! models made once per robot data.
-std::vector<RunResult> run_experiment(const ExperimentOptions& options = {});
+//! `progress`, when set, is called with the fraction of runs done after each run.
+std::vector<RunResult> run_experiment(const ExperimentOptions& options = {},
+                                      const std::function<void(double)>& progress = {});
 
-//! CSV header and one line per run (units in the column names, lengths in mm; the last column names the
-//! compensation variant, empty without).
+//! CSV header and one line per run (units in the column names, lengths in mm); the column variant names
+//! the compensation variant (empty without), and the last column, source, says "simulated" on every row,
+//! so that figures drawn from the file say so.
 std::string experiment_csv(const std::vector<RunResult>& results);
 
-//! A plain-text table (Markdown) with one line per robot × motion at the highest acceleration run:
+//! Plain-text tables (Markdown), one per acceleration, each with one line per robot × motion:
 //! length error and maximum deviation without → with compensation and the share removed
 //! (1 − |with|/|without|), deviation area and residual vibration.
 std::string experiment_summary(const std::vector<RunResult>& results);
