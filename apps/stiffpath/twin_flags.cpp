@@ -18,6 +18,9 @@ void add_twin_flags(CLI::App* cmd, TwinFlags& f, simulation::SimulationOptions& 
   cmd->add_option("--load-feedforward", sim.plant.load_feedforward,
                   "Fraction of the rigid-body torque feed-forward of the platform mass")
       ->check(within(0.0, 2.0, ""))->capture_default_str();
+  cmd->add_option("--load-feedforward-from", f.feedforward_from,
+                  "reference: the rigid-body model at the joint commands; command: the job's D'Alembert force (fx_n, fy_n)")
+      ->check(CLI::IsMember({"reference", "command"}))->capture_default_str();
   cmd->add_option("--mass-scale", sim.mass_scale, "Plant mass / the mass the controller and compensation assume")
       ->check(within(0.1, 5.0, ""))->capture_default_str();
   cmd->add_flag("--no-cg-lever", f.no_cg_lever, "Put the CG at the measured point (no platform tilt)");
@@ -32,6 +35,7 @@ void add_twin_flags(CLI::App* cmd, TwinFlags& f, simulation::SimulationOptions& 
 void apply_twin_flags(const TwinFlags& f, simulation::SimulationOptions& sim, simulation::TrueComplianceOptions& truth) {
   truth.family = f.truth;
   sim.plant.servo_feels_load = f.servo == "loaded";
+  sim.plant.load_feedforward_from_command = f.feedforward_from == "command";
 }
 
 }  // namespace stiffpath::cli

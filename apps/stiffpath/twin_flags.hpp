@@ -14,9 +14,10 @@ struct TwinFlags {
   std::string truth = "structural";  //!< C_true family
   std::string servo = "loaded";      //!< "loaded" (the drive feels the tip) or "ideal"
   bool no_cg_lever = false;
+  std::string feedforward_from = "reference";  //!< "reference" (rigid-body model) or "command" (its D'Alembert force)
 };
 
-//! Adds --truth, --servo, --motor-inertia-kg-m2, --load-feedforward, --mass-scale, --no-cg-lever,
+//! Adds --truth, --servo, --motor-inertia-kg-m2, --load-feedforward, --load-feedforward-from, --mass-scale, --no-cg-lever,
 //! --damping-ratio, --servo-bandwidth-hz and --step-rate-hz.
 void add_twin_flags(CLI::App* cmd, TwinFlags& flags, simulation::SimulationOptions& sim,
                     simulation::TrueComplianceOptions& truth);

@@ -83,7 +83,9 @@ void Plant::step(const JointReference& r, double dt, const Vec2& external_force_
     // implicitly (on J_m alone it is far faster than the step): J_m q̇⁺ = J_m q̇ + dt(τ − K_v q̇⁺).
     const double jm = options_.motor_inertia_kg_m2;
     Vec2 tau = jm * r.qdd_rad_s2;
-    if (options_.load_feedforward > 0.0) {
+    if (options_.load_feedforward > 0.0 && options_.load_feedforward_from_command) {
+      tau += options_.load_feedforward * (robot_.jacobian(r.q_rad).transpose() * r.load_force_N);
+    } else if (options_.load_feedforward > 0.0) {
       const Mat2 jr = robot_.jacobian(r.q_rad);
       const Vec2 a_ref = jr * r.qdd_rad_s2 + robot_.jacobian_dot(r.q_rad, r.qd_rad_s) * r.qd_rad_s;
       tau += options_.load_feedforward * controller_mass_ * (jr.transpose() * a_ref);

@@ -21,6 +21,7 @@ JointReference interpolate(const compensation::JointCommand& a, const compensati
   r.q_rad = h00 * a.q_rad + h10 * ma + h01 * b.q_rad + h11 * mb;
   r.qd_rad_s = (d00 * a.q_rad + d10 * ma + d01 * b.q_rad + d11 * mb) / h;
   r.qdd_rad_s2 = (e00 * a.q_rad + e10 * ma + e01 * b.q_rad + e11 * mb) / (h * h);
+  r.load_force_N = -((1.0 - s) * a.force_N + s * b.force_N);
   return r;
 }
 

@@ -163,6 +163,34 @@ TEST(Twin, DefaultVariantIsDynamicAndSmoothedAndBeatsTheThesisOffTheGrid) {
   }
 }
 
+// With compensation the corrected command accelerates by the offset's δ̈ more than the tip (δ = C·m·a:
+// δ̈ = C·m·s, large where the smoothed jerk ramps), so a drive's rigid-body feed-forward at the command
+// pushes a load that is not there. Feeding forward the job's own D'Alembert force instead (the tip's
+// m·a) removes most of what the loaded servo left: the default's CO and residual at least halve.
+TEST(Twin, TorqueFeedForwardFromTheCommandsForceHelpsTheLoadedServo) {
+  const auto robot = kinematics::load_robot("oc-gu");
+  ExperimentOptions model_side;
+  model_side.motions = {"triangle-off"};
+  const TwinModels models = make_twin_models(robot, model_side);
+  ExperimentOptions from_command = model_side;
+  from_command.simulation.plant.load_feedforward_from_command = true;
+  const RunSpec spec{"oc-gu", "triangle-off", 5.0, true, "default"};
+  const RunMetrics rigid = run_once(spec, robot, models, model_side).metrics;
+  const RunMetrics fed = run_once(spec, robot, models, from_command).metrics;
+  EXPECT_LT(fed.cornering_overshoot_m, 0.5 * rigid.cornering_overshoot_m);
+  EXPECT_LT(fed.residual_vibration_m, 0.5 * rigid.residual_vibration_m);
+  EXPECT_LT(fed.path_accuracy_m, rigid.path_accuracy_m);
+  // Without compensation the command is the plan: both feed-forwards are the same m·a (to the
+  // difference of the Hermite reference's acceleration and the sampled force).
+  const RunSpec off{"oc-gu", "triangle-off", 5.0, false, "thesis"};
+  const double a = run_once(off, robot, models, model_side).metrics.path_accuracy_m;
+  const double b = run_once(off, robot, models, from_command).metrics.path_accuracy_m;
+  EXPECT_NEAR(a, b, 0.01 * a);
+  std::printf("triangle-off 5g default: CO %.1f → %.1f um, residual %.1f → %.1f um, AT_p %.1f → %.1f um\n",
+              rigid.cornering_overshoot_m * 1e6, fed.cornering_overshoot_m * 1e6, rigid.residual_vibration_m * 1e6,
+              fed.residual_vibration_m * 1e6, rigid.path_accuracy_m * 1e6, fed.path_accuracy_m * 1e6);
+}
+
 // The CG lever is h·[A21 −A11; A22 −A12] with A the fitted tilts per newton: it scales with the CG's
 // height (35.9 mm for G_U, 5.3 mm for G_L), and under a force along x the platform tilts about +y in the
 // thesis's tables, which makes a high CG deflect more along x.
