@@ -112,7 +112,7 @@ void add_experiment_command(CLI::App& app) {
   cmd->add_option("--accelerations-g", a->options.accelerations_g, "Acceleration limits (g)")
       ->check(within(0.1, 10.0, "g"))->capture_default_str();
   cmd->add_option("--variants", a->options.variants, "Compensations besides none: thesis (quasi-static bilinear), "
-                                                     "default (what `run` does)")
+                                                     "default (what `run --method auto` does: dynamic, smoothed, the cross-validated model)")
       ->check(CLI::IsMember({"thesis", "default"}))->capture_default_str();
   cmd->add_option("--gain", a->options.compensator.gain, "Compensation gain")->check(within(0.0, 10.0, ""))
       ->capture_default_str();

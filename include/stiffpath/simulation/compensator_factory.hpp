@@ -16,7 +16,7 @@ enum class CompensationVariant {
   //! The thesis's method (§4.2–4.4): the bilinear grid model (eq. 4.12) and the quasi-static correction
   //! p_cmd = p − C·F.
   thesis_quasi_static,
-  //! What `stiffpath run` does by default: the model its cross-validation favours, dynamic compensation
+  //! What `stiffpath run --method auto` does: the model cross-validation favours, dynamic compensation
   //! (the tip's spring–damper inverted, compensation::Method::dynamic) on a reference smoothed over
   //! compensation::kDefaultSmoothing_s.
   default_run,

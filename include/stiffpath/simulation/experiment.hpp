@@ -58,7 +58,7 @@ struct ExperimentOptions {
   std::vector<TestMotion> paths;       //!< users' own paths, run after the motions
   std::vector<double> accelerations_g{1, 2, 3, 4, 5};
   //! Compensations run besides "without": "thesis" (the thesis's quasi-static bilinear method, drawn in the
-  //! figures) and "default" (what `run` does by default).
+  //! figures) and "default" (what `run --method auto` does: dynamic compensation on a smoothed reference with the model cross-validation favours).
   std::vector<std::string> variants{"thesis", "default"};
   bool cg_lever = true;  //!< the CG's height tilts the platform (make_cg_lever); false: the CG at G
   //! Compensate with C_true (+ the CG lever) itself instead of the fitted model: the error budget's case
