@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs every Debian package that stiffpath's build, tests, benchmarks and tools need (idempotent).
-# Optional groups, installed only when named: `bootstrap.sh linuxcnc` adds LinuxCNC for its integration tests.
+# Optional groups, installed only when named: `bootstrap.sh linuxcnc` adds LinuxCNC for its integration tests,
+# `bootstrap.sh bindings` GNU Octave (the MEX gateway's build and test) and matplotlib (the Python example).
 set -euo pipefail
 
 packages=(
@@ -8,14 +9,16 @@ packages=(
   libeigen3-dev libcli11-dev nlohmann-json3-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libopencv-dev libpng-dev gnuplot-nox
-  python3 python3-dev pybind11-dev python3-numpy
+  python3 python3-dev pybind11-dev python3-numpy python3-pytest
 )
 for group in "$@"; do
   case "$group" in
     # LinuxCNC 2.9 in user space (no real-time kernel needed for the tests): halcompile, Makefile.modinc, halrun,
     # halsampler/halstreamer and the linuxcnc Python module. About 87 packages, 69 MB of archives.
     linuxcnc) packages+=(linuxcnc-uspace linuxcnc-uspace-dev) ;;
-    *) echo "bootstrap: unknown package group '$group' (known: linuxcnc)" >&2; exit 2 ;;
+    # Octave 7 with mkoctfile, and matplotlib. Measured on Debian 12 (an image with the base packages): see docs/matlab.md.
+    bindings) packages+=(octave liboctave-dev python3-matplotlib) ;;
+    *) echo "bootstrap: unknown package group '$group' (known: linuxcnc, bindings)" >&2; exit 2 ;;
   esac
 done
 

@@ -6,7 +6,10 @@ cd "$(dirname "$0")/.."
 what=${1:-demo}
 jobs=$(nproc 2>/dev/null || echo 2)
 
-if [ "$what" = linuxcnc ]; then bash scripts/bootstrap.sh linuxcnc; else bash scripts/bootstrap.sh; fi
+case "$what" in
+  linuxcnc|bindings) bash scripts/bootstrap.sh "$what" ;;
+  *) bash scripts/bootstrap.sh ;;
+esac
 
 build() {  # build <preset>
   cmake --preset "$1" >/dev/null
@@ -41,8 +44,14 @@ case "$what" in
     "${sudo_cmd[@]}" cmake --build --preset dev --target stiffpath_linuxcnc_install_modules
     ctest --preset dev -L 'c_api|linuxcnc'
     ;;
+  bindings)
+    # The Python module (pytest) and the MATLAB/Octave gateway (an Octave script), both against the CLI's numbers.
+    cmake --preset dev -DSTIFFPATH_BUILD_PYTHON=ON -DSTIFFPATH_BUILD_MATLAB=ON >/dev/null
+    cmake --build --preset dev -j "$jobs"
+    ctest --preset dev -L 'python|octave|install'
+    ;;
   *)
-    echo "usage: scripts/dev.sh demo|test|asan|bench|linuxcnc" >&2
+    echo "usage: scripts/dev.sh demo|test|asan|bench|linuxcnc|bindings" >&2
     exit 2
     ;;
 esac

@@ -22,4 +22,22 @@ if(result OR NOT out MATCHES "x_mm=222\\.132 y_mm=37\\.500 dy_um=-16[5-8][0-9]")
   message(FATAL_ERROR "consumer printed '${out}' (exit ${result})")
 endif()
 message(STATUS "consumer: ${out}")
+# The installed Python module, when it was built, imports from the prefix and finds the installed library.
+file(GLOB python_module ${WORK_DIR}/prefix/lib/python3*/dist-packages/stiffpath*.so)
+if(python_module)
+  get_filename_component(python_dir ${python_module} DIRECTORY)
+  execute_process(COMMAND ${CMAKE_COMMAND} -E env PYTHONPATH=${python_dir}
+                          /usr/bin/python3 -c "import stiffpath; print('%.9f' % stiffpath.Robot('oc-gu').ik([0.222132, 0.0375])[0])"
+                  OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE result)
+  # θ1 of (222.132, 37.5) mm by eq. 2.2: atan2(37.5, 222.132) + acos(225.275 / 300) = 0.888588388 rad.
+  if(result OR NOT out MATCHES "^0\\.88858838")
+    message(FATAL_ERROR "the installed Python module printed '${out}' '${err}' (exit ${result})")
+  endif()
+  message(STATUS "installed Python module: theta1 = ${out}")
+endif()
+# The installed CLI runs, and runs stiffpath-vision from libexec for the image commands.
+execute_process(COMMAND ${WORK_DIR}/prefix/bin/stiffpath render-scan --help OUTPUT_VARIABLE out RESULT_VARIABLE result)
+if(result OR NOT out MATCHES "render-scan")
+  message(FATAL_ERROR "the installed stiffpath render-scan --help printed '${out}' (exit ${result})")
+endif()
 file(REMOVE_RECURSE ${WORK_DIR})

@@ -1,0 +1,12 @@
+// stiffpath-vision: the image subcommands (scan, render-scan) in a program of their own, the one that links OpenCV;
+// `stiffpath scan …` and `stiffpath render-scan …` run it with their arguments.
+#include "cli_run.hpp"
+#include "commands.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"stiffpath: compliance compensation for high-acceleration planar parallel robots", "stiffpath"};
+  app.require_subcommand(1);
+  stiffpath::cli::add_scan_command(app);
+  stiffpath::cli::add_render_scan_command(app);
+  return stiffpath::cli::run(app, argc, argv);
+}

@@ -1,0 +1,159 @@
+// Python: stiffpath.Compensator (the real-time step, thesis fig. 4.3) and compensate (a whole trajectory → joints).
+#include <pybind11/stl.h>
+
+#include <fmt/format.h>
+
+#include "arrays.hpp"
+#include "parts.hpp"
+#include "stiffpath/compensation/compensator.hpp"
+#include "stiffpath/core/error.hpp"
+#include "stiffpath/job/job.hpp"
+#include "stiffpath/job/joint_writer.hpp"
+#include "stiffpath/motion/sampler.hpp"
+
+namespace stiffpath::python {
+
+namespace {
+
+using compensation::Compensator;
+using compensation::JointCommand;
+
+// The rows of a trajectory array as the job's sample source.
+class RowSource final : public motion::SampleSource {
+ public:
+  RowSource(const TrajectoryRow* rows, std::size_t n) : rows_(rows), n_(n) {}
+  std::optional<motion::TrajectorySample> next() override {
+    if (i_ == n_) return std::nullopt;
+    const TrajectoryRow& r = rows_[i_++];
+    motion::TrajectorySample s;
+    s.t_s = r.t_s;
+    s.position_m = Vec2(r.p_m[0], r.p_m[1]);
+    s.velocity_m_s = Vec2(r.v_m_s[0], r.v_m_s[1]);
+    s.acceleration_m_s2 = Vec2(r.a_m_s2[0], r.a_m_s2[1]);
+    s.jerk_m_s3 = Vec2(r.j_m_s3[0], r.j_m_s3[1]);
+    s.laser_on = r.laser;
+    s.power = r.power;
+    s.line = r.line;
+    return s;
+  }
+
+ private:
+  const TrajectoryRow* rows_;
+  std::size_t n_;
+  std::size_t i_ = 0;
+};
+
+// Keeps every command in memory, as the joints array's records.
+class RowWriter final : public job::JointWriter {
+ public:
+  void write(const JointCommand& c) override {
+    rows.push_back({c.t_s,
+                    {c.q_rad.x(), c.q_rad.y()},
+                    {c.qd_rad_s.x(), c.qd_rad_s.y()},
+                    {c.qdd_rad_s2.x(), c.qdd_rad_s2.y()},
+                    {c.target_m.x(), c.target_m.y()},
+                    {c.command_m.x(), c.command_m.y()},
+                    {c.force_N.x(), c.force_N.y()},
+                    {c.deflection_m.x(), c.deflection_m.y()},
+                    c.laser_on,
+                    c.outside_grid,
+                    static_cast<std::int32_t>(c.line)});
+  }
+  void finish() override {}
+  std::vector<JointRow> rows;
+};
+
+struct PyCompensator {
+  std::shared_ptr<Compensator> compensator;
+  PyModel model;
+};
+
+PyCompensator make_compensator(const kinematics::Robot& robot, const std::optional<PyModel>& model, double gain,
+                               bool enabled, bool check_limits) {
+  PyModel used = model ? *model : to_py_model(compliance::load_robot_model(robot));
+  if (model) {
+    compliance::LoadedModel check{nullptr, used.provenance, used.label};
+    compliance::check_model_geometry(check, robot, false);
+  }
+  auto compensator = std::make_shared<Compensator>(robot, used.model, compensation::CompensatorOptions{gain, enabled, check_limits});
+  return {std::move(compensator), std::move(used)};
+}
+
+py::array compensate(const PyCompensator& c, const py::array_t<TrajectoryRow, py::array::c_style>& trajectory,
+                     const std::string& acceleration, double rate_hz, const std::string& label) {
+  const auto source_kind = job::parse_acceleration_source(acceleration);
+  RowSource source(trajectory.data(), static_cast<std::size_t>(trajectory.size()));
+  RowWriter writer;
+  {
+    py::gil_scoped_release unlocked;
+    job::run_job(source, *c.compensator, &writer, label, rate_hz, source_kind);
+  }
+  py::array_t<JointRow> out(static_cast<py::ssize_t>(writer.rows.size()));
+  std::copy(writer.rows.begin(), writer.rows.end(), out.mutable_data());
+  return out;
+}
+
+Vec2 pair_of(const py::handle& value, const char* what) {
+  const auto a = pairs(value, what);
+  if (a.size() != 2) throw py::value_error(fmt::format("{}: expected 2 numbers", what));
+  return {a.data()[0], a.data()[1]};
+}
+
+}  // namespace
+
+void add_compensation(py::module_& m) {
+  py::class_<JointCommand>(m, "JointCommand", "The compensator's output for one sample (SI).")
+      .def_readonly("t_s", &JointCommand::t_s)
+      .def_property_readonly("q_rad", [](const JointCommand& c) { return py::make_tuple(c.q_rad.x(), c.q_rad.y()); }, "θ1, θ2 = IK(p_cmd)")
+      .def_property_readonly("qd_rad_s", [](const JointCommand& c) { return py::make_tuple(c.qd_rad_s.x(), c.qd_rad_s.y()); }, "ω1, ω2")
+      .def_property_readonly("qdd_rad_s2", [](const JointCommand& c) { return py::make_tuple(c.qdd_rad_s2.x(), c.qdd_rad_s2.y()); }, "α1, α2")
+      .def_property_readonly("target_m", [](const JointCommand& c) { return py::make_tuple(c.target_m.x(), c.target_m.y()); }, "planned point p")
+      .def_property_readonly("command_m", [](const JointCommand& c) { return py::make_tuple(c.command_m.x(), c.command_m.y()); }, "corrected target p_cmd = p − k·Δ")
+      .def_property_readonly("force_N", [](const JointCommand& c) { return py::make_tuple(c.force_N.x(), c.force_N.y()); }, "D'Alembert force F = −m·a (eq. 4.4)")
+      .def_property_readonly("deflection_m", [](const JointCommand& c) { return py::make_tuple(c.deflection_m.x(), c.deflection_m.y()); }, "predicted Δ = C(p)·F")
+      .def_property_readonly("status", [](const JointCommand& c) { return std::string(compensation::describe(c.status)); }, "'ok' or why the command must not be sent")
+      .def_property_readonly("ok", [](const JointCommand& c) { return c.status == compensation::Status::ok; })
+      .def_readonly("joint", &JointCommand::joint, "offending joint (0, 1) for a joint-limit status, else −1")
+      .def_readonly("outside_grid", &JointCommand::outside_grid)
+      .def("__repr__", [](const JointCommand& c) {
+        return fmt::format("JointCommand(t_s={:.6g}, q_rad=({:.9g}, {:.9g}), status='{}')", c.t_s, c.q_rad.x(), c.q_rad.y(),
+                           compensation::describe(c.status));
+      });
+
+  py::class_<PyCompensator>(m, "Compensator",
+                            "The compensation step of thesis fig. 4.3 for one robot and compliance model: F = −m·a at the\n"
+                            "CG (eq. 4.4), Δ = C(p)·F (eqs. 4.6–4.7, 4.12), p_cmd = p − k·Δ, θ = IK(p_cmd), then the\n"
+                            "reach and joint-limit checks.")
+      .def(py::init(&make_compensator), py::arg("robot"), py::arg("model") = py::none(), py::arg("gain") = 1.0,
+           py::arg("enabled") = true, py::arg("check_limits") = true,
+           "robot: a Robot. model: a Model (default: the robot's own, as the CLI's run). gain: k (≥ 0).\n"
+           "enabled=False gives the uncompensated command p_cmd = p. A model fitted for another geometry is refused.")
+      .def_property_readonly("model", [](const PyCompensator& c) { return c.model; })
+      .def_property_readonly("robot", [](const PyCompensator& c) { return c.compensator->robot(); })
+      .def("step",
+           [](const PyCompensator& c, double t_s, const py::handle& p_m, const py::handle& v_m_s, const py::handle& a_m_s2,
+              const py::handle& j_m_s3, const py::handle& s_m_s4) {
+             compensation::TaskSample s;
+             s.t_s = t_s;
+             s.position_m = pair_of(p_m, "p_m");
+             s.velocity_m_s = pair_of(v_m_s, "v_m_s");
+             s.acceleration_m_s2 = pair_of(a_m_s2, "a_m_s2");
+             s.jerk_m_s3 = pair_of(j_m_s3, "j_m_s3");
+             s.snap_m_s4 = pair_of(s_m_s4, "s_m_s4");
+             return c.compensator->step(s);
+           },
+           py::arg("t_s"), py::arg("p_m"), py::arg("v_m_s") = py::make_tuple(0.0, 0.0),
+           py::arg("a_m_s2") = py::make_tuple(0.0, 0.0), py::arg("j_m_s3") = py::make_tuple(0.0, 0.0),
+           py::arg("s_m_s4") = py::make_tuple(0.0, 0.0),
+           "One sample of the planned path (t in s; p, v, a, jerk, snap as (x, y) pairs in m, m/s, m/s², m/s³, m/s⁴) →\n"
+           "JointCommand. Never raises for a bad sample: check .ok / .status, as a servo loop would.")
+      .def("compensate", &compensate, py::arg("trajectory"), py::arg("acceleration") = "analytic",
+           py::arg("rate_hz") = motion::default_sample_rate_hz, py::arg("label") = "<trajectory>",
+           "A whole trajectory (dtype stiffpath.trajectory_dtype, e.g. from plan) → joint commands (dtype\n"
+           "stiffpath.joints_dtype: t_s, q_rad, qd_rad_s, qdd_rad_s2, target_m, command_m, force_N, deflection_m,\n"
+           "laser, outside_grid, line), as `stiffpath run` writes them. acceleration: 'analytic' (the profile's) or\n"
+           "'numeric' (second difference of the positions at rate_hz, the thesis's §4.3). The first refused sample\n"
+           "raises stiffpath.Error naming the label, the G-code line, the time and the limit.");
+}
+
+}  // namespace stiffpath::python
