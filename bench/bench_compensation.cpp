@@ -15,10 +15,13 @@ namespace {
 using namespace stiffpath;
 using stiffpath::bench::job_samples;
 
-void BM_StepLatency(benchmark::State& state, const char* model_name) {
+void BM_StepLatency(benchmark::State& state, const char* model_name, compensation::Method method) {
   const auto samples = job_samples();
+  compensation::CompensatorOptions options;
+  options.method = method;
   const compensation::Compensator comp(kinematics::load_robot("oc-gu"),
-                                       std::shared_ptr<const compliance::Model>(compliance::load_model(model_name).model.release()));
+                                       std::shared_ptr<const compliance::Model>(compliance::load_model(model_name).model.release()),
+                                       options);
   std::vector<double> ns(samples.size());
   using clock = std::chrono::steady_clock;
   // The clock's own cost, subtracted from every reading.
@@ -40,8 +43,15 @@ void BM_StepLatency(benchmark::State& state, const char* model_name) {
   state.counters["max_ns"] = ns.back();
   state.counters["samples"] = static_cast<double>(ns.size());
 }
-BENCHMARK_CAPTURE(BM_StepLatency, bilinear, "thesis-oc")->Iterations(1)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_StepLatency, physical, "thesis-oc-physical")->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_StepLatency, bilinear, "thesis-oc", compensation::Method::quasi_static)
+    ->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_StepLatency, physical, "thesis-oc-physical", compensation::Method::quasi_static)
+    ->Iterations(1)->Unit(benchmark::kMillisecond);
+// Dynamic inversion (tip time constant T = 2ζ√m·C^{1/2}, the T-terms of δ and its rates): target median ≤ 300 ns.
+BENCHMARK_CAPTURE(BM_StepLatency, bilinear_dynamic, "thesis-oc", compensation::Method::dynamic)
+    ->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_StepLatency, physical_dynamic, "thesis-oc-physical", compensation::Method::dynamic)
+    ->Iterations(1)->Unit(benchmark::kMillisecond);
 
 void BM_StepThroughput(benchmark::State& state) {
   const auto samples = job_samples();
@@ -54,6 +64,21 @@ void BM_StepThroughput(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_StepThroughput);
+
+void BM_StepThroughputDynamic(benchmark::State& state) {
+  const auto samples = job_samples();
+  compensation::CompensatorOptions options;
+  options.method = compensation::Method::dynamic;
+  const compensation::Compensator comp(kinematics::load_robot("oc-gu"),
+                                       std::shared_ptr<const compliance::Model>(compliance::load_model("thesis-oc").model.release()),
+                                       options);
+  std::size_t k = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(comp.step(samples[k]));
+    if (++k == samples.size()) k = 0;
+  }
+}
+BENCHMARK(BM_StepThroughputDynamic);
 
 // The step on a general five-bar (the asymmetric robot of examples/robots/): general inverse
 // kinematics and J̇, and the physical model with U from the robot's own geometry.

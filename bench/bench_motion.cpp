@@ -1,42 +1,63 @@
-// Benchmarks of the motion module: one profile solve, sampling, and planning a 100 000-line G-code program.
+// Benchmarks of the motion module: profile solves per case, sampling, planning 100 000-line programs and its share of `run`.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fmt/format.h>
+#include <fstream>
+#include <unistd.h>
 #include <numbers>
 #include <random>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "cam_program.hpp"
+#include "stiffpath/compensation/compensator.hpp"
+#include "stiffpath/compliance/model_factory.hpp"
+#include "stiffpath/job/job.hpp"
+#include "stiffpath/job/joint_writer.hpp"
+#include "stiffpath/kinematics/robot.hpp"
 #include "stiffpath/motion/profile.hpp"
 #include "stiffpath/motion/speed_change.hpp"
 #include "stiffpath/motion/trajectory_stream.hpp"
 
 namespace {
 using namespace stiffpath::motion;
+namespace compensation = stiffpath::compensation;
+namespace compliance = stiffpath::compliance;
+namespace kinematics = stiffpath::kinematics;
+namespace job = stiffpath::job;
 
-// Feasible random inputs; `shape` picks the peak-speed case the solver takes.
-std::vector<ProfileInput> profile_inputs(int shape) {
+// The solver's cases, each benchmarked on its own inputs (rest-to-rest and moving ends apart).
+enum class ProfileCase { cruise, both_trapezoids, two_triangles, triangle_trapezoid };
+
+ProfileCase case_of(const ProfileInput& in, const Profile& p) {
+  if (p.peak_velocity_m_s >= in.max_velocity_m_s) return ProfileCase::cruise;
+  const bool up_plateau = p.phase_s[1] > 0.0, down_plateau = p.phase_s[5] > 0.0;
+  if (up_plateau && down_plateau) return ProfileCase::both_trapezoids;
+  return up_plateau || down_plateau ? ProfileCase::triangle_trapezoid : ProfileCase::two_triangles;
+}
+
+// 1024 feasible random inputs of one case at 2 m/s, 5 g, 5 g / 5 ms: end speeds uniform in [0, 2]
+// m/s (or both 0), lengths 1e-7 … 1 m (log-uniform) beyond the least distance.
+std::vector<ProfileInput> profile_inputs(ProfileCase wanted, bool rest_to_rest) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::vector<ProfileInput> inputs;
   while (inputs.size() < 1024) {
-    ProfileInput in{0.0, 2.0 * unit(rng), 2.0 * unit(rng), 2.0, 49.03325, 9806.65};
+    ProfileInput in{0.0, 0.0, 0.0, 2.0, 49.03325, 9806.65};
+    if (!rest_to_rest) in.start_velocity_m_s = 2.0 * unit(rng), in.end_velocity_m_s = 2.0 * unit(rng);
     const double least = speed_change(in.start_velocity_m_s, in.end_velocity_m_s, 49.03325, 9806.65).distance_m;
-    in.length_m = least + (shape == 0 ? 0.5 : shape == 1 ? 0.05 * unit(rng) : 1e-4 * unit(rng));
+    in.length_m = least + std::pow(10.0, -7.0 + 7.0 * unit(rng));
     Profile p;
-    solve_profile(in, p);
-    const bool cruise = p.phase_s[3] > 0.0, plateaus = p.phase_s[1] > 0.0 && p.phase_s[5] > 0.0;
-    if ((shape == 0 && cruise) || (shape == 1 && !cruise && plateaus) || (shape == 2 && !cruise && !plateaus)) {
-      inputs.push_back(in);
-    }
+    if (solve_profile(in, p) == ProfileStatus::ok && case_of(in, p) == wanted) inputs.push_back(in);
   }
   return inputs;
 }
 
 void BM_SolveProfile(benchmark::State& state) {
-  const auto inputs = profile_inputs(static_cast<int>(state.range(0)));
+  const auto inputs = profile_inputs(static_cast<ProfileCase>(state.range(0)), state.range(1) != 0);
   Profile profile;
   std::size_t i = 0;
   for (auto _ : state) {
@@ -44,9 +65,12 @@ void BM_SolveProfile(benchmark::State& state) {
     benchmark::ClobberMemory();
   }
 }
-// 0: cruise at the limit, 1: no cruise, both halves at the acceleration limit (quadratic),
-// 2: no cruise, a half below the acceleration limit (bracketed Newton).
-BENCHMARK(BM_SolveProfile)->Arg(0)->Arg(1)->Arg(2);
+// First argument: 0 cruise at the limit; 1 no cruise, both halves at the acceleration limit
+// (quadratic); 2 no cruise, neither half at it (quartic in the duration); 3 no cruise, one half
+// at it (quartic in the ramp time; impossible from rest to rest). Second: 1 = rest to rest.
+BENCHMARK(BM_SolveProfile)
+    ->ArgNames({"case", "rest"})
+    ->Args({0, 1})->Args({0, 0})->Args({1, 1})->Args({1, 0})->Args({2, 1})->Args({2, 0})->Args({3, 0});
 
 void BM_ReachableSpeed(benchmark::State& state) {
   std::mt19937_64 rng(3);
@@ -86,7 +110,7 @@ std::string long_program(int lines) {
 
 void BM_PlanProgram100kLines(benchmark::State& state) {
   const std::string program = long_program(100000);
-  std::size_t segments = 0, window = 0;
+  std::size_t segments = 0, window = 0, evaluations = 0;
   for (auto _ : state) {
     std::istringstream in(program);
     GcodeReader reader(in, "long.gcode");
@@ -95,9 +119,11 @@ void BM_PlanProgram100kLines(benchmark::State& state) {
     segments = 0;
     while (auto s = planner.next()) ++segments;
     window = planner.statistics().peak_window;
+    evaluations = planner.statistics().entry_evaluations;
   }
   state.counters["segments"] = static_cast<double>(segments);
   state.counters["peak_window"] = static_cast<double>(window);
+  state.counters["entry_evaluations_per_segment"] = static_cast<double>(evaluations) / static_cast<double>(segments);
   state.counters["ns_per_segment"] =
       benchmark::Counter(static_cast<double>(segments), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
@@ -143,4 +169,81 @@ void BM_EvaluateAtRandomTime(benchmark::State& state) {
 }
 BENCHMARK(BM_EvaluateAtRandomTime);
 
+// Planning's share of `run` on a CAM-like program of 100 000 chords (cam_program.hpp), measured in
+// one process on the same text: 0 reading and blending it (the path stages), 1 also planning it
+// (look-ahead, runs, profiles), 2 also sampling it at 2 kHz; and the whole `run` job with CSV or
+// binary output (process CPU time: the job runs on two threads). The planner's share is
+// (stage 1 − stage 0) / run.
+enum class CamStage { path, plan, sample };
+
+void BM_CamProgram(benchmark::State& state) {
+  const std::string program = stiffpath::bench::cam_program(100000);
+  const auto stage = static_cast<CamStage>(state.range(0));
+  std::size_t segments = 0, runs = 0, evaluations = 0;
+  for (auto _ : state) {
+    std::istringstream in(program);
+    GcodeReader reader(in, "cam.gcode");
+    CornerBlender blender(reader, JunctionRules{}.corner_angle_rad);
+    segments = 0;
+    if (stage == CamStage::path) {
+      while (auto s = blender.next()) ++segments;
+      continue;
+    }
+    Planner planner(blender, MotionLimits{});
+    if (stage == CamStage::plan) {
+      while (auto s = planner.next()) ++segments;
+    } else {
+      Sampler sampler(planner);
+      while (auto s = sampler.next()) benchmark::DoNotOptimize(s->position_m);
+      segments = planner.statistics().segments;
+    }
+    runs = planner.statistics().runs;
+    evaluations = planner.statistics().entry_evaluations;
+  }
+  state.counters["segments"] = static_cast<double>(segments);
+  state.counters["runs"] = static_cast<double>(runs);
+  state.counters["entry_evaluations"] = static_cast<double>(evaluations);
+  state.counters["ns_per_segment"] =
+      benchmark::Counter(static_cast<double>(segments), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_CamProgram)->ArgName("stage")->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+
+void BM_CamRunJob(benchmark::State& state, job::OutputFormat format) {
+  const auto dir = std::filesystem::temp_directory_path();
+  const auto program = dir / fmt::format("stiffpath_bench_cam_{}.gcode", ::getpid());
+  const auto out = dir / fmt::format("stiffpath_bench_cam_{}.out", ::getpid());
+  std::ofstream(program) << stiffpath::bench::cam_program(100000);
+  const auto spec = kinematics::load_robot("oc-gu");
+  const compensation::Compensator comp(spec, std::shared_ptr<const compliance::Model>(
+                                                 compliance::load_model("thesis-oc").model.release()));
+  for (auto _ : state) {
+    TrajectoryStream stream(program);
+    auto writer = job::make_joint_writer(format, out.string(), 2000.0, {spec.name, spec.geometry_hash()});
+    benchmark::DoNotOptimize(job::run_job(stream, comp, writer.get(), program.string(), 2000.0).samples);
+    writer.reset();
+    state.PauseTiming();  // deleting the file (waiting for the disk to take its pages) is not part of the job
+    std::filesystem::remove(out);
+    state.ResumeTiming();
+  }
+  std::filesystem::remove(program);
+}
+BENCHMARK_CAPTURE(BM_CamRunJob, csv, job::OutputFormat::csv)->MeasureProcessCPUTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_CamRunJob, binary, job::OutputFormat::binary)->MeasureProcessCPUTime()->Unit(benchmark::kMillisecond);
+
 }  // namespace
+
+// `bench_motion --write-cam-program FILE` writes the CAM-like program of the benchmarks above, for
+// whole-command runs (stiffpath plan FILE against stiffpath run FILE -o out.csv); otherwise the
+// benchmarks run as usual.
+int main(int argc, char** argv) {
+  if (argc == 3 && std::string(argv[1]) == "--write-cam-program") {
+    std::ofstream out(argv[2]);
+    out << stiffpath::bench::cam_program(100000);
+    return out ? 0 : 1;
+  }
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -10,6 +10,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libopencv-dev libpng-dev gnuplot-nox
   python3 python3-dev pybind11-dev python3-numpy python3-pytest
+  clang  # libFuzzer harnesses (scripts/dev.sh fuzz)
 )
 for group in "$@"; do
   case "$group" in

@@ -14,11 +14,14 @@ import sys
 
 BIN_FIELDS = ["t_s", "theta1_rad", "theta2_rad", "omega1_rad_s", "omega2_rad_s", "alpha1_rad_s2", "alpha2_rad_s2",
               "x_m", "y_m", "xcmd_m", "ycmd_m", "fx_n", "fy_n", "line", "laser"]
-RECORD = struct.Struct("<13dib3x")
+# Binary versions: (header bytes, record layout, fields); version 2 adds the power after Fy.
+LAYOUTS = {1: (64, struct.Struct("<13dib3x"), BIN_FIELDS),
+           2: (128, struct.Struct("<14dib3x"), BIN_FIELDS[:13] + ["power"] + BIN_FIELDS[13:])}
 ANGLES = {"theta1_rad", "theta2_rad"}
 EXACT = {"t_s", "line", "laser"}
 # CSV cells are fixed-point: a round-off difference may flip the last printed digit.
 CSV_LAST_DIGIT = {"t_s": 1e-6, "theta1_rad": 1e-9, "theta2_rad": 1e-9, "omega1_rad_s": 1e-9, "omega2_rad_s": 1e-9,
+                  "alpha1_rad_s2": 1e-6, "alpha2_rad_s2": 1e-6, "power": 1e-6,
                   "x_mm": 1e-6, "y_mm": 1e-6, "xcmd_mm": 1e-6, "ycmd_mm": 1e-6, "fx_n": 1e-4, "fy_n": 1e-4}
 
 
@@ -27,14 +30,18 @@ def read_binary(path):
         data = f.read()
     if data[:8] != b"SPJOINT\0":
         raise SystemExit(f"{path}: not a binary joint file")
+    version = struct.unpack_from("<I", data, 8)[0]
+    if version not in LAYOUTS:
+        raise SystemExit(f"{path}: binary joint file version {version}, not one of {sorted(LAYOUTS)}")
+    header, record, fields = LAYOUTS[version]
     count = struct.unpack_from("<Q", data, 24)[0]
-    rows = [RECORD.unpack_from(data, 64 + k * RECORD.size) for k in range(count)]
-    return BIN_FIELDS, rows, data[:64]
+    rows = [record.unpack_from(data, header + k * record.size) for k in range(count)]
+    return fields, rows, data[:header]
 
 
 def read_csv(path):
     with open(path, newline="") as f:
-        reader = csv.reader(f)
+        reader = csv.reader(row for row in f if not row.startswith("#"))
         header = next(reader)
         rows = [tuple(float(v) for v in row) for row in reader]
     return header, rows, ",".join(header).encode()

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# One entry point for people and CI: bootstrap, build and then run the demo, the tests, the sanitizer tests or the benchmarks.
+# One entry point for people and CI: bootstrap, build and then run the demo, the tests, the sanitizer tests, the fuzzers or the benchmarks.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -33,6 +33,19 @@ case "$what" in
     build release
     for b in build/release/bench/bench_*; do "$b" --benchmark_repetitions=5 --benchmark_report_aggregates_only=true; done
     ;;
+  fuzz)
+    # Every libFuzzer harness (fuzz/) for FUZZ_SECONDS (default 20) each under ASan + UBSan, seeded from
+    # tests/data and data/; new corpus entries stay in build/fuzz/corpus, findings in build/fuzz/findings.
+    cmake --preset fuzz >/dev/null
+    cmake --build --preset fuzz -j "$jobs" --target fuzz_all
+    bash scripts/fuzz.sh build/fuzz "${FUZZ_SECONDS:-20}"
+    ;;
+  tsan)
+    # The threaded tests (the job's two-thread pipeline) under ThreadSanitizer; only their target is built.
+    cmake --preset tsan >/dev/null
+    cmake --build --preset tsan -j "$jobs" --target test_job
+    TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 ctest --preset tsan -L job
+    ;;
   linuxcnc)
     # The C interface and the LinuxCNC integration: modules built and copied into LinuxCNC's module
     # directory (root), then the tests labelled c_api and linuxcnc (LinuxCNC runs headless, see docs/linuxcnc.md).
@@ -51,7 +64,7 @@ case "$what" in
     ctest --preset dev -L 'python|octave|install'
     ;;
   *)
-    echo "usage: scripts/dev.sh demo|test|asan|bench|linuxcnc|bindings" >&2
+    echo "usage: scripts/dev.sh demo|test|asan|bench|linuxcnc|bindings|fuzz|tsan" >&2
     exit 2
     ;;
 esac

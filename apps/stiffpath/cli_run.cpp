@@ -12,7 +12,10 @@
 
 namespace stiffpath::cli {
 
-void print_json(const nlohmann::json& document) { std::cout << document.dump(2) << '\n'; }
+// Text that is not UTF-8 (a file name, a CSV cell) is printed with U+FFFD in its place, never refused.
+void print_json(const nlohmann::json& document) {
+  std::cout << document.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
+}
 
 double tidy(double value) {
   if (value == 0.0 || !std::isfinite(value)) return value;
@@ -56,7 +59,9 @@ void report(const CLI::App& app, const stiffpath::Error& e) {
     } else {
       errors.push_back(error_json(e));
     }
-    std::cerr << nlohmann::json{{"errors", errors}, {"omitted", all != nullptr ? all->omitted() : 0}}.dump(2) << '\n';
+    std::cerr << nlohmann::json{{"errors", errors}, {"omitted", all != nullptr ? all->omitted() : 0}}.dump(
+                     2, ' ', false, nlohmann::json::error_handler_t::replace)
+              << '\n';
     return;
   }
   std::istringstream lines(e.what());

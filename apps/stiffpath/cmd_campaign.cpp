@@ -4,6 +4,7 @@
 #include <memory>
 #include <set>
 
+#include "bounded.hpp"
 #include "commands.hpp"
 #include "robot_flags.hpp"
 #include "stiffpath/core/error.hpp"
@@ -89,11 +90,14 @@ void add_campaign_command(CLI::App& app) {
   sim->add_option("--truth", opts->truth, "Displacement table giving the true displacements, or 'thesis' "
                                           "(default: the robot's own table)");
   sim->add_flag("--linearize", opts->linearize, "Replace the truth by its per-point linear fit (fills gaps)");
-  sim->add_option("--readings", opts->readings, "Readings per load step")->capture_default_str();
+  sim->add_option("--readings", opts->readings, "Readings per load step")->capture_default_str()
+      ->check(within(1, 1000, ""));
   sim->add_option("--noise-sigma-um", opts->noise_sigma_um, "Sigma of each U, L coordinate (um); 11.5 = +-23 um at 2 sigma")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(within(0, 10000.0, "um"));
   sim->add_option("--seed", opts->seed, "Random seed")->capture_default_str();
-  sim->add_option("--g-height-mm", opts->g_height_mm, "z of G at step 0 in the CMM frame (mm)")->capture_default_str();
+  sim->add_option("--g-height-mm", opts->g_height_mm, "z of G at step 0 in the CMM frame (mm)")->capture_default_str()
+      ->check(within(-10000.0, 10000.0, "mm"));
   sim->add_option("-o,--output", opts->output, "Campaign CSV to write")->required();
   sim->add_option("--truth-output", opts->truth_output, "Also write the truth as a displacement table");
   sim->add_flag("--json", opts->json, "Print a JSON summary");

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <memory>
 
+#include "bounded.hpp"
 #include "commands.hpp"
 #include "robot_flags.hpp"
 #include "stiffpath/core/error.hpp"
@@ -154,7 +155,8 @@ void add_data_command(CLI::App& app) {
   auto* robot = add_robot_flag(check, opts->robot)
                     ->description("Robot: its rows of the table, |UL| for the angle accuracy, whether symmetry is "
                                   "expected (default: oc-gu, every row)");
-  check->add_option("--accuracy-um", opts->accuracy_um, "Accuracy of one displacement cell (um)")->capture_default_str();
+  check->add_option("--accuracy-um", opts->accuracy_um, "Accuracy of one displacement cell (um)")->capture_default_str()
+      ->check(within(0.001, 100000.0, "um"));
   check->add_flag("--nominal-forces", opts->nominal_forces, "Regress on F_nominal_N (50 ... 250 N) instead of F_N");
   check->add_flag("--json", opts->json, "Print every result as JSON");
   check->callback([opts, robot] {

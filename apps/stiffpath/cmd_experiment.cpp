@@ -1,15 +1,21 @@
-// `stiffpath experiment`: the thesis's test matrix (§4.5) on the digital twin, with CSV, summary and figures.
+// `stiffpath experiment`: the thesis's test matrix (§4.5) on the digital twin, or its robustness sweep, with tables and figures.
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <memory>
 
+#include "bounded.hpp"
 #include "commands.hpp"
+#include "stiffpath/core/output_budget.hpp"
 #include "stiffpath/core/atomic_file.hpp"
 #include "stiffpath/report/experiment_plots.hpp"
 #include "stiffpath/report/gnuplot.hpp"
+#include "stiffpath/report/robustness_plots.hpp"
 #include "stiffpath/simulation/experiment.hpp"
+#include "stiffpath/simulation/robustness.hpp"
+#include "twin_flags.hpp"
 
 namespace stiffpath::cli {
 
@@ -19,17 +25,51 @@ struct ExperimentArgs {
   simulation::ExperimentOptions options;
   std::vector<std::string> paths;
   bool motions_given = false;
+  bool robots_given = false;
   bool no_plots = false;
+  TwinFlags twin;
+  bool robustness = false;
+  simulation::RobustnessOptions robust;
 };
 
+void robustness(ExperimentArgs& a, const std::filesystem::path& dir) {
+  a.robust.base = a.options;
+  if (a.robots_given) a.robust.robot = a.options.robots.front();
+  const int runs = simulation::robustness_run_count(a.robust);
+  fmt::print("robustness: {} runs on {} at {:g} g ({} seeds)\n", runs, a.robust.robot, a.robust.acceleration_g,
+             a.robust.seeds);
+  const auto start = std::chrono::steady_clock::now();
+  core::check_output_directory(a.output);  // before the runs, not after them
+  const auto rows = simulation::run_robustness(a.robust);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  core::create_output_directory(dir);
+  core::write_file_atomically(dir / "robustness.tsv", simulation::robustness_tsv(rows));
+  const std::string table = simulation::robustness_markdown(rows);
+  core::write_file_atomically(dir / "robustness.md", table);
+  fmt::print("{} runs in {:.1f} s → {}\n\n{}", runs, seconds, (dir / "robustness.tsv").string(), table);
+  if (a.no_plots) return;
+  if (!report::gnuplot_available()) {
+    fmt::print("\ngnuplot not found: figures skipped\n");
+    return;
+  }
+  fmt::print("\nfigures ({}): {}\n", dir.string(), fmt::join(report::write_robustness_figures(dir, rows), ", "));
+}
+
 void experiment(ExperimentArgs a) {
+  apply_twin_flags(a.twin, a.options.simulation, a.options.truth);
+  a.options.cg_lever = !a.twin.no_cg_lever;
+  const std::filesystem::path dir(a.output);
+  if (a.robustness) {
+    robustness(a, dir);
+    return;
+  }
   for (const auto& path : a.paths) a.options.paths.push_back(simulation::user_motion(path));
   if (!a.paths.empty() && !a.motions_given) a.options.motions.clear();  // only the user's paths
+  core::check_output_directory(a.output);  // before the runs, not after them (nothing is created yet)
   const auto start = std::chrono::steady_clock::now();
   const auto results = simulation::run_experiment(a.options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const std::filesystem::path dir(a.output);
-  std::filesystem::create_directories(dir);
+  core::create_output_directory(dir);
   core::write_file_atomically(dir / "results.csv", simulation::experiment_csv(results));
   const std::string summary = simulation::experiment_summary(results);
   core::write_file_atomically(dir / "summary.md", summary);
@@ -39,7 +79,11 @@ void experiment(ExperimentArgs a) {
       fmt::print("\ngnuplot not found: figures skipped\n");
       return;
     }
-    const auto figures = report::write_experiment_figures(dir, results);
+    // The thesis's figures compare without and with the thesis's method.
+    std::vector<simulation::RunResult> thesis;
+    std::copy_if(results.begin(), results.end(), std::back_inserter(thesis),
+                 [](const auto& r) { return !r.spec.compensated || r.spec.variant == "thesis"; });
+    const auto figures = report::write_experiment_figures(dir, thesis);
     fmt::print("\nfigures ({}): {}\n", dir.string(), fmt::join(figures, ", "));
   }
 }
@@ -49,23 +93,47 @@ void add_experiment_command(CLI::App& app) {
   auto a = std::make_shared<ExperimentArgs>();
   auto* cmd = app.add_subcommand("experiment", "The thesis's test matrix on the digital twin of robots (figs. 4.9-4.11)");
   cmd->add_option("-o,--output", a->output, "Output directory (results.csv, summary.md, figures)")->capture_default_str();
-  cmd->add_option("--robots,--robot,--mechanisms", a->options.robots, "Presets or robot files to run")
-      ->capture_default_str();
+  auto* robots = cmd->add_option("--robots,--robot,--mechanisms", a->options.robots, "Presets or robot files to run")
+                     ->capture_default_str();
   auto* motions = cmd->add_option("--motions", a->options.motions,
-                                  "x, y, triangle: placed in each robot's measured rectangle")->capture_default_str();
+                                  "x, y, triangle, y-mid-1 …, x-mid, triangle-off: placed in each robot's measured "
+                                  "rectangle")->capture_default_str();
   cmd->add_option("--path", a->paths, "A G-code file of your own to run as FILE[:SIDES] (repeatable; without "
                                       "--motions only these run)");
   cmd->add_option("--accelerations-g", a->options.accelerations_g, "Acceleration limits (g)")
-      ->check(CLI::Range(0.1, 10.0))->capture_default_str();
-  cmd->add_option("--perturbation", a->options.truth.perturbation, "Relative perturbation of C_true")
-      ->check(CLI::Range(0.0, 0.5))->capture_default_str();
-  cmd->add_option("--gain", a->options.compensator.gain, "Compensation gain")->check(CLI::NonNegativeNumber)
+      ->check(within(0.1, 10.0, "g"))->capture_default_str();
+  cmd->add_option("--variants", a->options.variants, "Compensations besides none: thesis (quasi-static bilinear), "
+                                                     "default (what `run` does)")
+      ->check(CLI::IsMember({"thesis", "default"}))->capture_default_str();
+  cmd->add_option("--gain", a->options.compensator.gain, "Compensation gain")->check(within(0.0, 10.0, ""))
       ->capture_default_str();
-  cmd->add_option("--damping-ratio", a->options.simulation.plant.tip_damping_ratio, "Damping ratio of the tip's modes")
-      ->check(CLI::Range(0.0, 2.0))->capture_default_str();
+  add_twin_flags(cmd, a->twin, a->options.simulation, a->options.truth);
+  cmd->add_flag("--oracle-model", a->options.oracle_model,
+                "Compensate with C_true (+ CG lever) itself: the error budget without model error");
   cmd->add_flag("--no-plots", a->no_plots, "Skip the gnuplot figures");
-  cmd->callback([a, motions] {
+  cmd->add_flag("--robustness", a->robustness,
+                "Sweep damping ratio, mass error, servo bandwidth and campaign noise over seeds instead "
+                "(robustness.tsv, robustness.md, figures)");
+  cmd->add_option("--seeds", a->robust.seeds, "Robustness: truth/campaign seeds 1 … N")
+      ->check(CLI::Range(1, 100))->capture_default_str();
+  cmd->add_option("--robust-motions", a->robust.motions, "Robustness: motions")->capture_default_str();
+  cmd->add_option("--robust-accel-g", a->robust.acceleration_g, "Robustness: acceleration limit (g)")
+      ->check(within(0.1, 10.0, "g"))->capture_default_str();
+  cmd->add_option("--robust-variants", a->robust.variants, "Robustness: without, thesis, default")
+      ->check(CLI::IsMember({"without", "thesis", "default"}))->capture_default_str();
+  cmd->add_option("--damping-ratios", a->robust.damping_ratios, "Robustness: tip damping ratios")
+      ->check(within(0.0, 2.0, ""))->capture_default_str();
+  cmd->add_option("--mass-errors", a->robust.mass_errors, "Robustness: plant mass errors (fraction)")
+      ->check(within(-0.5, 1.0, ""))->capture_default_str();
+  cmd->add_option("--servo-bandwidths-hz", a->robust.servo_bandwidths_hz, "Robustness: servo bandwidths (Hz)")
+      ->check(within(1.0, 2000.0, ""))->capture_default_str();
+  cmd->add_option("--noise-um", a->robust.noise_sigmas_um, "Robustness: campaign noise sigma per coordinate (um)")
+      ->check(within(0.0, 1000.0, ""))->capture_default_str();
+  cmd->add_option("--max-runs", a->robust.max_runs, "Robustness: refuse sweeps with more runs")
+      ->check(CLI::Range(1, 100000))->capture_default_str();
+  cmd->callback([a, motions, robots] {
     a->motions_given = motions->count() > 0;
+    a->robots_given = robots->count() > 0;
     experiment(*a);
   });
 }

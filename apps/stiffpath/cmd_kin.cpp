@@ -5,6 +5,7 @@
 #include <memory>
 #include <vector>
 
+#include "bounded.hpp"
 #include "commands.hpp"
 #include "robot_flags.hpp"
 #include "stiffpath/compliance/model_factory.hpp"
@@ -115,11 +116,11 @@ void add_kin_command(CLI::App& app) {
   auto opts = std::make_shared<KinOptions>();
 
   auto* fk = kin->add_subcommand("fk", "Forward kinematics: joint angles -> platform point");
-  fk->add_option("--theta1-deg", opts->theta1_deg, "Left actuator's angle (deg)")->required();
-  fk->add_option("--theta2-deg", opts->theta2_deg, "Right actuator's angle (deg)")->required();
+  fk->add_option("--theta1-deg", opts->theta1_deg, "Left actuator's angle (deg)")->required()->check(within(-1e4, 1e4, "deg"));
+  fk->add_option("--theta2-deg", opts->theta2_deg, "Right actuator's angle (deg)")->required()->check(within(-1e4, 1e4, "deg"));
   auto* ik = kin->add_subcommand("ik", "Inverse kinematics: platform point -> joint angles (reach and joint limits checked)");
-  ik->add_option("--x-mm", opts->x_mm, "Platform x (mm)")->required();
-  ik->add_option("--y-mm", opts->y_mm, "Platform y (mm)")->required();
+  ik->add_option("--x-mm", opts->x_mm, "Platform x (mm)")->required()->check(within(-1e4, 1e4, "mm"));
+  ik->add_option("--y-mm", opts->y_mm, "Platform y (mm)")->required()->check(within(-1e4, 1e4, "mm"));
   auto* grid = kin->add_subcommand("grid", "Inverse kinematics on the robot's measurement points (its table)");
   for (auto* sub : {fk, ik, grid}) {
     add_robot_flag(sub, opts->robot);

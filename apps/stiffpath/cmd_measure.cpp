@@ -5,6 +5,7 @@
 #include <cmath>
 #include <memory>
 
+#include "bounded.hpp"
 #include "commands.hpp"
 #include "stiffpath/core/units.hpp"
 #include "robot_flags.hpp"
@@ -92,7 +93,8 @@ void add_measure_command(CLI::App& app) {
   cmd->add_option("-o,--output", opts->output, "Displacement table CSV to write")->required();
   cmd->add_flag("--nominal-forces", opts->nominal_forces,
                 "Write F_N as step x nominal step (50 ... 250 N) as the thesis did, not the measured kgf");
-  cmd->add_option("--nominal-step-N", opts->nominal_step_N, "Nominal force per load step (N)")->capture_default_str();
+  cmd->add_option("--nominal-step-N", opts->nominal_step_N, "Nominal force per load step (N)")->capture_default_str()
+      ->check(within(0.001, 100000.0, "N"));
   cmd->add_flag("--json", opts->json, "Print a JSON summary");
   cmd->callback([opts] { run(*opts); });
 }

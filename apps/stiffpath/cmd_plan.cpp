@@ -1,11 +1,14 @@
 // `stiffpath plan`: G-code to a jerk-limited trajectory sampled at 2 kHz (thesis §4.3, fig. 4.3), as CSV.
 #include <cstdint>
+#include <cstdio>
+#include <iostream>
 #include <fmt/format.h>
 #include <memory>
 #include <optional>
 #include <vector>
 
 #include "commands.hpp"
+#include "job_budget.hpp"
 #include "motion_flags.hpp"
 #include "robot_flags.hpp"
 #include "stiffpath/core/error.hpp"
@@ -17,8 +20,6 @@ namespace stiffpath::cli {
 
 namespace {
 
-//! Default cap on the samples of one plan: 20 million, 2 h 46 min 40 s at 2 kHz, about 2.4 GB of CSV.
-constexpr std::uint64_t default_max_samples = 20'000'000;
 //! Bytes of a typical CSV row (the x motion's rows average 110), for the size quoted in a refusal.
 constexpr double csv_row_bytes = 120.0;
 
@@ -37,17 +38,6 @@ nlohmann::json warnings_json(const std::vector<motion::GcodeWarning>& warnings) 
     list.push_back({{"kind", motion::to_string(w.kind)}, {"message", w.message}, {"count", w.count}, {"first_line", w.first_line}});
   }
   return list;
-}
-
-// Plans without sampling first, so a job beyond the cap is refused before a sample is made.
-void check_size(const PlanArgs& a, const motion::PlanOptions& options) {
-  const motion::PlanSize size = motion::measure_plan(a.job, options);
-  if (size.samples <= a.max_samples) return;
-  const double bytes = static_cast<double>(size.samples) * csv_row_bytes;
-  const std::string csv = bytes < 1e9 ? fmt::format("{:.1f} MB", bytes * 1e-6) : fmt::format("{:.1f} GB", bytes * 1e-9);
-  throw Error(SourceLocation{a.job}, fmt::format("the plan has {} samples ({:.1f} s at {:g} Hz, about {} of CSV), more "
-                                                 "than the cap of {}; raise it with --max-samples",
-                                                 size.samples, size.duration_s, options.rate_hz, csv, a.max_samples));
 }
 
 // Passes the planned samples on and refuses the first one the robot cannot reach (singularity margins,
@@ -80,15 +70,17 @@ void run_plan(const PlanArgs& a) {
   const auto robot = load_robot_flag(a.robot);
   motion::PlanOptions options = plan_options(a.motion, robot);
   if (a.json) options.gcode.on_warnings = nullptr;  // they go into the JSON document
-  check_size(a, options);
+  (void)check_job_budget(a.job, options, a.max_samples, a.output, {csv_row_bytes, 0.0, "CSV"}, "plan");
   motion::TrajectoryStream planned(a.job, options);
   WorkspaceCheck stream(planned, robot, a.job);
   const motion::TrajectorySummary summary = a.output.empty()
                                                 ? motion::summarize(stream, options.rate_hz)
                                                 : motion::write_trajectory_csv(stream, options.rate_hz, a.output);
   const auto& planner = planned.planner_statistics();
+  // With -o - the samples own standard output, so the summary goes to standard error.
+  std::FILE* info = a.output == "-" ? stderr : stdout;
   if (a.json) {
-    print_json({{"job", a.job},
+    const nlohmann::json summary_json{{"job", a.job},
                 {"robot", robot.name},
                 {"duration_s", tidy(summary.duration_s)},
                 {"samples", summary.samples},
@@ -105,22 +97,27 @@ void run_plan(const PlanArgs& a) {
                 {"max_jerk_m_s3", tidy(options.limits.max_jerk_m_s3)},
                 {"lookahead_peak_segments", planner.peak_window},
                 {"warnings", warnings_json(planned.warnings())},
-                {"output", a.output.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.output)}});
+                {"output", a.output.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.output)}};
+    if (a.output == "-") {
+      std::cerr << summary_json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
+    } else {
+      print_json(summary_json);
+    }
     return;
   }
-  fmt::print("{}: {} segment{}, {} samples at {:g} Hz, duration {:.6f} s, inside robot {}'s workspace\n", a.job,
+  fmt::print(info, "{}: {} segment{}, {} samples at {:g} Hz, duration {:.6f} s, inside robot {}'s workspace\n", a.job,
              planned.segments(), planned.segments() == 1 ? "" : "s", summary.samples, options.rate_hz, summary.duration_s,
              robot.name);
-  fmt::print("limits: v {:.1f} mm/s, a {:.3f} m/s^2 ({:.2f} g), j {:.1f} m/s^3\n", units::m_to_mm(options.limits.max_velocity_m_s),
+  fmt::print(info, "limits: v {:.1f} mm/s, a {:.3f} m/s^2 ({:.2f} g), j {:.1f} m/s^3\n", units::m_to_mm(options.limits.max_velocity_m_s),
              options.limits.max_acceleration_m_s2, options.limits.max_acceleration_m_s2 / units::standard_gravity_m_s2,
              options.limits.max_jerk_m_s3);
-  fmt::print("peaks:  v {:.1f} mm/s, a {:.3f} m/s^2 ({:.2f} g), j {:.1f} m/s^3\n", units::m_to_mm(summary.peak_velocity_m_s),
+  fmt::print(info, "peaks:  v {:.1f} mm/s, a {:.3f} m/s^2 ({:.2f} g), j {:.1f} m/s^3\n", units::m_to_mm(summary.peak_velocity_m_s),
              summary.peak_acceleration_m_s2, summary.peak_acceleration_m_s2 / units::standard_gravity_m_s2,
              summary.peak_jerk_m_s3);
-  fmt::print("laser on {:.4f} s (peak power {:.1f} %, {:.4f} s at full power); the look-ahead held at most {} segment{}\n",
+  fmt::print(info, "laser on {:.4f} s (peak power {:.1f} %, {:.4f} s at full power); the look-ahead held at most {} segment{}\n",
              summary.laser_on_s, 100.0 * summary.peak_power, summary.laser_full_power_s, planner.peak_window,
              planner.peak_window == 1 ? "" : "s");
-  if (!a.output.empty()) fmt::print("wrote {}\n", a.output);
+  if (!a.output.empty()) fmt::print(info, "wrote {}\n", a.output);
 }
 
 }  // namespace
@@ -131,9 +128,8 @@ void add_plan_command(CLI::App& app) {
   cmd->add_option("job", a->job, "G-code program (mm, robot frame unless --work-offset-mm)")->required();
   add_motion_flags(cmd, a->motion);
   add_robot_flag(cmd, a->robot)->description("Robot whose workspace every sample must lie in (default: oc-gu)");
-  cmd->add_option("-o,--output", a->output, "Write the samples to this CSV file");
-  cmd->add_option("--max-samples", a->max_samples, "Refuse a plan with more samples than this (20 M: 2 h 46 min at 2 kHz)")
-      ->capture_default_str();
+  cmd->add_option("-o,--output", a->output, "Write the samples to this CSV file (- for standard output)");
+  add_max_samples_flag(cmd, a->max_samples);
   cmd->add_flag("--json", a->json, "Print the summary as JSON (errors too, on stderr)");
   cmd->callback([a] { run_plan(*a); });
 }

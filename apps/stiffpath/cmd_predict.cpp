@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 #include <memory>
 
+#include "bounded.hpp"
 #include "commands.hpp"
 #include "robot_flags.hpp"
 #include "stiffpath/compliance/model_factory.hpp"
@@ -87,12 +88,13 @@ void add_predict_command(CLI::App& app) {
   add_robot_flag(cmd, o->robot);
   add_model_flags(cmd, o->request);
   cmd->add_option("--outside", o->outside, "Beyond the measured region: error, clamp or extrapolate (default: model's)");
-  cmd->add_option("--x-mm", o->x_mm, "Platform x (mm)")->required();
-  cmd->add_option("--y-mm", o->y_mm, "Platform y (mm)")->required();
-  cmd->add_option("--fx-n", o->fx_n, "Force along x (N)")->required();
-  cmd->add_option("--fy-n", o->fy_n, "Force along y (N)")->required();
+  cmd->add_option("--x-mm", o->x_mm, "Platform x (mm)")->required()->check(within(-1e4, 1e4, "mm"));
+  cmd->add_option("--y-mm", o->y_mm, "Platform y (mm)")->required()->check(within(-1e4, 1e4, "mm"));
+  cmd->add_option("--fx-n", o->fx_n, "Force along x (N)")->required()->check(within(-1e6, 1e6, "N"));
+  cmd->add_option("--fy-n", o->fy_n, "Force along y (N)")->required()->check(within(-1e6, 1e6, "N"));
   auto* tool = cmd->add_option("--tool-below-g-mm", o->tool_below_G_mm,
-                               "Also predict at a tool point this far below G, using the angular deflections");
+                               "Also predict at a tool point this far below G, using the angular deflections")
+                   ->check(within(-1e3, 1e3, "mm"));
   cmd->add_option("--angles", o->angles, "Table with rx_deg, ry_deg for --tool-below-g-mm (default: the robot's)");
   cmd->add_flag("--json", o->json, "Print JSON (keys dx_um, dy_um, ...)");
   cmd->callback([o, tool] {

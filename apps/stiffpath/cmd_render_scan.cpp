@@ -5,6 +5,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "bounded.hpp"
 #include "commands.hpp"
 #include "progress.hpp"
 #include "stiffpath/core/atomic_file.hpp"
@@ -158,26 +159,43 @@ void add_render_scan_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("render-scan", "Draw a synthetic scan of a laser-marked path (or a plate of marks) and print its ground truth");
   cmd->add_option("output", o->output, "Image to write (.png, .tif, .jpg); the resolution is stored in it")->required();
   cmd->add_option("--shape", o->shape, "line, triangle or polyline (with --vertices-mm)")->capture_default_str();
-  cmd->add_option("--length-mm", o->length_mm, "Line length (mm)")->capture_default_str();
-  cmd->add_option("--side-mm", o->side_mm, "Triangle side (mm)")->capture_default_str();
+  cmd->add_option("--length-mm", o->length_mm, "Line length (mm)")->capture_default_str()
+      ->check(within(0.01, 2000, "mm"));
+  cmd->add_option("--side-mm", o->side_mm, "Triangle side (mm)")->capture_default_str()
+      ->check(within(0.01, 2000, "mm"));
   cmd->add_option("--vertices-mm", o->vertices_mm, "Polyline vertices 'x,y x,y ...' (mm, y down)");
   cmd->add_option("--path-csv", o->path_csv, "Draw this path instead (CSV with x_mm, y_mm columns, in marking order)");
-  cmd->add_option("--sides", o->sides, "Sides of the --path-csv path, for its ground truth")->capture_default_str();
+  cmd->add_option("--sides", o->sides, "Sides of the --path-csv path, for its ground truth")->capture_default_str()
+      ->check(within(1, 64, ""));
   cmd->add_option("--plate", o->plate, "Draw a page of marks and labels described in this JSON file (docs/vision.md)");
-  cmd->add_option("--angle-deg", o->angle_deg, "Rotation of the path (deg, clockwise on screen)")->capture_default_str();
-  cmd->add_option("--width-mm", o->width_mm, "Mark width = laser spot diameter (mm)")->capture_default_str();
-  cmd->add_option("--margin-mm", o->margin_mm, "Paper around the mark (mm)")->capture_default_str();
-  cmd->add_option("--wiggle-mm", o->wiggle_mm, "Initial amplitude of a decaying vibration (mm)")->capture_default_str();
-  cmd->add_option("--wiggle-wavelength-mm", o->wiggle_wavelength_mm, "Its wavelength along the path (mm)")->capture_default_str();
-  cmd->add_option("--wiggle-decay-mm", o->wiggle_decay_mm, "Its decay length along the path (mm)")->capture_default_str();
-  cmd->add_option("--corner-trim-mm", o->trim_mm, "Corner trim of the ground truth's metrics (mm), as for scan")->capture_default_str();
-  cmd->add_option("--dpi", o->render.dpi, "Resolution (dpi)")->capture_default_str();
-  cmd->add_option("--blur-px", o->render.blur_px, "Scanner blur sigma (px)")->capture_default_str();
-  cmd->add_option("--noise", o->render.noise, "Pixel noise sigma (fraction of full scale)")->capture_default_str();
-  cmd->add_option("--texture", o->render.texture, "Paper fibre texture sigma (fraction)")->capture_default_str();
-  cmd->add_option("--shading", o->render.shading, "Illumination falloff across the image (fraction)")->capture_default_str();
-  cmd->add_option("--specks", o->render.specks, "Dust specks scattered over the image")->capture_default_str();
-  cmd->add_option("--bit-depth", o->render.bit_depth, "8 or 16")->capture_default_str();
+  cmd->add_option("--angle-deg", o->angle_deg, "Rotation of the path (deg, clockwise on screen)")->capture_default_str()
+      ->check(within(-3600, 3600, "deg"));
+  cmd->add_option("--width-mm", o->width_mm, "Mark width = laser spot diameter (mm)")->capture_default_str()
+      ->check(within(0.001, 50, "mm"));
+  cmd->add_option("--margin-mm", o->margin_mm, "Paper around the mark (mm)")->capture_default_str()
+      ->check(within(0, 1000, "mm"));
+  cmd->add_option("--wiggle-mm", o->wiggle_mm, "Initial amplitude of a decaying vibration (mm)")->capture_default_str()
+      ->check(within(0, 100, "mm"));
+  cmd->add_option("--wiggle-wavelength-mm", o->wiggle_wavelength_mm, "Its wavelength along the path (mm)")->capture_default_str()
+      ->check(within(0.001, 10000.0, "mm"));
+  cmd->add_option("--wiggle-decay-mm", o->wiggle_decay_mm, "Its decay length along the path (mm)")->capture_default_str()
+      ->check(within(0.001, 1000000.0, "mm"));
+  cmd->add_option("--corner-trim-mm", o->trim_mm, "Corner trim of the ground truth's metrics (mm), as for scan")->capture_default_str()
+      ->check(within(0, 1000, "mm"));
+  cmd->add_option("--dpi", o->render.dpi, "Resolution (dpi)")->capture_default_str()
+      ->check(within(10, 100000.0, "dpi"));
+  cmd->add_option("--blur-px", o->render.blur_px, "Scanner blur sigma (px)")->capture_default_str()
+      ->check(within(0, 1000, "px"));
+  cmd->add_option("--noise", o->render.noise, "Pixel noise sigma (fraction of full scale)")->capture_default_str()
+      ->check(within(0, 1, ""));
+  cmd->add_option("--texture", o->render.texture, "Paper fibre texture sigma (fraction)")->capture_default_str()
+      ->check(within(0, 1, ""));
+  cmd->add_option("--shading", o->render.shading, "Illumination falloff across the image (fraction)")->capture_default_str()
+      ->check(within(0, 1, ""));
+  cmd->add_option("--specks", o->render.specks, "Dust specks scattered over the image")->capture_default_str()
+      ->check(within(0, 1000000.0, ""));
+  cmd->add_option("--bit-depth", o->render.bit_depth, "8 or 16")->capture_default_str()
+      ->check(within(8, 16, ""));
   cmd->add_flag("--colour", o->render.colour, "Write a colour (BGR) image");
   cmd->add_option("--seed", o->render.seed, "Seed of the noise, texture and specks")->capture_default_str();
   cmd->add_option("--truth", o->truth, "Also write the ground truth JSON to this file");

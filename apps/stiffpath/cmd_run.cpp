@@ -4,11 +4,15 @@
 #include <cstdio>
 #include <fmt/format.h>
 #include <fstream>
+#include <iostream>
 #include <memory>
 
+#include "bounded.hpp"
 #include "commands.hpp"
+#include "job_budget.hpp"
 #include "motion_flags.hpp"
 #include "robot_flags.hpp"
+#include "stiffpath/compensation/tip_modes.hpp"
 #include "stiffpath/job/job.hpp"
 #include "stiffpath/compliance/model_factory.hpp"
 #include "stiffpath/core/error.hpp"
@@ -24,12 +28,22 @@ struct RunArgs {
   bool no_compensation = false;
   double gain = 1.0;
   std::string accel_source = "analytic";
+  std::string method = "dynamic";
+  double damping_ratio = compensation::CompensatorOptions{}.damping_ratio;
+  double smooth_ms = 8.0;
+  std::string shaper = "none";
   std::string outside;
   std::string output;
   std::string format = "csv";
   bool json = false;
+  std::uint64_t max_samples = default_max_samples;
   MotionFlags motion;
 };
+
+//! Bytes of one joint CSV row (measured rows of the thesis's jobs are 125-135 bytes; rounded up) and
+//! of a binary record (docs/compensation.md), for the output budget checked before writing.
+constexpr OutputEstimate joint_csv_estimate{140.0, 200.0, "joint CSV"};
+constexpr OutputEstimate joint_bin_estimate{112.0, 64.0, "binary joint records"};
 
 int count_lines(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -54,6 +68,15 @@ job::Progress progress_bar(const std::string& job) {
   };
 }
 
+// The rectangle the planned job covers (one planning pass without compensation).
+compliance::GridBounds job_region(const std::string& job, const motion::PlanOptions& options) {
+  motion::TrajectoryStream stream(job, options);
+  auto box = compliance::GridBounds::none();
+  while (const auto s = stream.next()) box.include(s->position_m);
+  if (box.x_min > box.x_max) throw Error(SourceLocation{job}, "the program has no motion");
+  return box;
+}
+
 void run(const RunArgs& a) {
   const auto robot = load_robot_flag(a.robot);
   const bool compensating = !a.no_compensation && a.gain != 0.0;
@@ -67,26 +90,81 @@ void run(const RunArgs& a) {
     model_name = loaded.label;
     model.reset(loaded.model.release());
   }
-  const compensation::Compensator compensator(robot, model, {a.gain, !a.no_compensation, true});
-  const motion::PlanOptions options = plan_options(a.motion, robot);
+  compensation::CompensatorOptions comp_options{a.gain, !a.no_compensation, true};
+  comp_options.method = compensation::parse_method(a.method);
+  comp_options.damping_ratio = a.damping_ratio;
+  const compensation::Compensator compensator(robot, model, comp_options);
+  const auto shaper = compensation::parse_filter_kind(a.shaper);
+  if (shaper == compensation::FilterKind::smooth) throw Error("--shaper: expected none, zv or zvd, got 'smooth' (see --smooth-ms)");
+  if (!(a.smooth_ms >= 0.0 && a.smooth_ms <= 1000.0)) throw Error(fmt::format("--smooth-ms: must lie in 0..1000, got {}", a.smooth_ms));
+
+  // --jerk auto and the shapers need the tip's lowest natural frequency on the job's region.
+  MotionFlags motion_flags = a.motion;
+  double lowest_hz = 0.0;
+  if (motion_flags.jerk == "auto" || shaper != compensation::FilterKind::none) {
+    if (!model) throw Error("--jerk auto and --shaper need the robot's compliance model");
+    MotionFlags first_pass = motion_flags;
+    if (first_pass.jerk == "auto") first_pass.jerk.clear();
+    lowest_hz = compensation::lowest_natural_frequency_hz(*model, robot.moving_mass_kg,
+                                                          job_region(a.job, plan_options(first_pass, robot)));
+    if (!(lowest_hz > 0.0)) throw Error("the compliance model gives the tip no natural frequency on this job");
+    if (motion_flags.jerk == "auto") {
+      motion_flags.jerk_m_s3 = units::parse_acceleration_m_s2(motion_flags.accel) * lowest_hz;
+    }
+  }
+  const motion::PlanOptions options = plan_options(motion_flags, robot);
+  std::vector<compensation::ReferenceFilter> filter_list;
+  if (shaper != compensation::FilterKind::none) {
+    compensation::ReferenceFilterOptions f;
+    f.kind = shaper;
+    f.damping_ratio = a.damping_ratio;
+    f.min_frequency_hz = lowest_hz;
+    const double mass = robot.moving_mass_kg;
+    filter_list.emplace_back(options.rate_hz, f, [model, mass](const kinematics::Vec2& p) {
+      return compensation::lowest_natural_frequency_hz(model->compliance(model->bounds().clamp(p)), mass);
+    });
+  }
+  if (a.smooth_ms > 0.0) {
+    // Two moving averages of W/2 each: jerk and snap become continuous (the dynamic offset's terms in
+    // a, j and s then have no steps).
+    compensation::ReferenceFilterOptions f;
+    f.kind = compensation::FilterKind::smooth;
+    f.smooth_s = a.smooth_ms * 0.5e-3;
+    filter_list.emplace_back(options.rate_hz, f);
+    filter_list.emplace_back(options.rate_hz, f);
+  }
+  compensation::FilterChain filters(std::move(filter_list));
   const auto acceleration = job::parse_acceleration_source(a.accel_source);
 
+  const auto format = job::parse_output_format(a.format);
+  (void)check_job_budget(a.job, options, a.max_samples, a.output,
+                         format == job::OutputFormat::csv ? joint_csv_estimate : joint_bin_estimate, "job",
+                         static_cast<std::uint64_t>(filters.delay_samples()));
   motion::TrajectoryStream stream(a.job, options);
   std::unique_ptr<job::JointWriter> writer;
   if (!a.output.empty()) {
-    writer = job::make_joint_writer(job::parse_output_format(a.format), a.output, options.rate_hz, robot.name);
+    writer = job::make_joint_writer(format, a.output, options.rate_hz, {robot.name, robot.geometry_hash()});
   }
   const auto progress = progress_bar(a.job);
-  const job::JobSummary s = job::run_job(stream, compensator, writer.get(), a.job, options.rate_hz, acceleration, progress);
+  const job::JobSummary s = job::run_job(stream, compensator, writer.get(), a.job, options.rate_hz, acceleration, progress,
+                                            &filters);
   if (progress) std::fprintf(stderr, "\n");
 
+  // With -o - the joint records own standard output, so the summary goes to standard error.
+  std::FILE* info = a.output == "-" ? stderr : stdout;
   if (a.json) {
-    print_json({{"job", a.job},
+    const nlohmann::json summary_json{{"job", a.job},
                 {"robot", robot.name},
                 {"model", model_name},
                 {"compensation", compensating},
                 {"gain", a.no_compensation ? 0.0 : a.gain},
                 {"acceleration_source", a.accel_source},
+                {"method", compensating ? a.method : "none"},
+                {"damping_ratio", tidy(a.damping_ratio)},
+                {"smooth_ms", tidy(a.smooth_ms)},
+                {"shaper", a.shaper},
+                {"jerk_m_s3", tidy(options.limits.max_jerk_m_s3)},
+                {"lowest_frequency_hz", lowest_hz > 0.0 ? nlohmann::json(tidy(lowest_hz)) : nlohmann::json(nullptr)},
                 {"duration_s", tidy(s.duration_s)},
                 {"samples", s.samples},
                 {"rate_hz", tidy(options.rate_hz)},
@@ -96,21 +174,30 @@ void run(const RunArgs& a) {
                 {"peak_joint_velocity_rad_s", tidy(s.peak_joint_velocity_rad_s)},
                 {"peak_joint_acceleration_rad_s2", tidy(s.peak_joint_acceleration_rad_s2)},
                 {"samples_outside_grid", s.samples_outside_grid},
-                {"output", a.output.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.output)}});
+                {"output", a.output.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.output)}};
+    if (a.output == "-") {
+      std::cerr << summary_json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
+    } else {
+      print_json(summary_json);
+    }
     return;
   }
-  fmt::print("{}: {} on {} with {}{}\n", a.job, compensating ? "compensated" : "not compensated", robot.name,
+  fmt::print(info, "{}: {} on {} with {}{}\n", a.job, compensating ? "compensated" : "not compensated", robot.name,
              model_name, compensating && a.gain != 1.0 ? fmt::format(" (gain {:g})", a.gain) : "");
-  fmt::print("  {} samples at {:g} Hz, duration {:.4f} s\n", s.samples, options.rate_hz, s.duration_s);
-  fmt::print("  peak D'Alembert force {:.1f} N, predicted deflection {:.1f} um, correction {:.1f} um\n", s.peak_force_N,
+  if (compensating) {
+    fmt::print(info, "  {} compensation (damping ratio {:g}), reference smoothed over {:g} ms, shaper {}, jerk {:.0f} m/s^3\n",
+               a.method, a.damping_ratio, a.smooth_ms, a.shaper, options.limits.max_jerk_m_s3);
+  }
+  fmt::print(info, "  {} samples at {:g} Hz, duration {:.4f} s\n", s.samples, options.rate_hz, s.duration_s);
+  fmt::print(info, "  peak D'Alembert force {:.1f} N, predicted deflection {:.1f} um, correction {:.1f} um\n", s.peak_force_N,
              units::m_to_um(s.peak_deflection_m), units::m_to_um(s.peak_correction_m));
-  fmt::print("  peak joint velocity {:.2f} rad/s, acceleration {:.1f} rad/s^2\n", s.peak_joint_velocity_rad_s,
+  fmt::print(info, "  peak joint velocity {:.2f} rad/s, acceleration {:.1f} rad/s^2\n", s.peak_joint_velocity_rad_s,
              s.peak_joint_acceleration_rad_s2);
   if (s.samples_outside_grid > 0) {
-    fmt::print("  {} samples outside the compliance model's measured region ({})\n", s.samples_outside_grid,
+    fmt::print(info, "  {} samples outside the compliance model's measured region ({})\n", s.samples_outside_grid,
                model ? compliance::to_string(model->outside_policy()) : "no model");
   }
-  if (!a.output.empty()) fmt::print("  wrote {}\n", a.output);
+  if (!a.output.empty()) fmt::print(info, "  wrote {}\n", a.output);
 }
 }  // namespace
 
@@ -121,14 +208,29 @@ void add_run_command(CLI::App& app) {
   add_robot_flag(cmd, a->robot);
   add_model_flags(cmd, a->request);
   cmd->add_flag("--no-compensation", a->no_compensation, "Plan and convert to joints without correcting");
-  cmd->add_option("--gain", a->gain, "Compensation gain k in p_cmd = p - k*delta")->check(CLI::NonNegativeNumber)
+  cmd->add_option("--gain", a->gain, "Compensation gain k in p_cmd = p - k*delta")->check(within(0.0, 10.0, ""))
       ->capture_default_str();
   cmd->add_option("--accel-source", a->accel_source, "analytic (profile) or numeric (thesis: 2nd difference)")
+      ->capture_default_str();
+  cmd->add_option("--compensation", a->method,
+                  "dynamic (tip model with damping inverted) or quasi-static (the thesis's static deflection)")
+      ->check(CLI::IsMember({"dynamic", "quasi-static"}))
+      ->capture_default_str();
+  cmd->add_option("--damping-ratio", a->damping_ratio, "Damping ratio of the tip's modes assumed by dynamic compensation")
+      ->check(within(0.0, 0.9, ""))
+      ->capture_default_str();
+  cmd->add_option("--smooth-ms", a->smooth_ms,
+                  "Two moving averages of half this width over the planned reference (ms; 0: off): continuous "
+                  "jerk and snap, so commands without velocity steps")
+      ->capture_default_str();
+  cmd->add_option("--shaper", a->shaper, "Input shaper following the tip's frequency: none, zv or zvd")
+      ->check(CLI::IsMember({"none", "zv", "zvd"}))
       ->capture_default_str();
   cmd->add_option("--outside", a->outside,
                   "A sample more than 1 mm outside the model's measured region: error (refuse), clamp or extrapolate "
                   "(default: the model's, error unless it was fitted otherwise)");
-  cmd->add_option("-o,--output", a->output, "Joint trajectory file (written atomically)");
+  cmd->add_option("-o,--output", a->output, "Joint trajectory file (written atomically; - for standard output)");
+  add_max_samples_flag(cmd, a->max_samples);
   cmd->add_option("--format", a->format, "csv or bin")->capture_default_str();
   cmd->add_flag("--json", a->json, "Print the summary as JSON");
   add_motion_flags(cmd, a->motion);

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <memory>
 
+#include "bounded.hpp"
 #include "commands.hpp"
 #include "progress.hpp"
 #include "stiffpath/core/csv.hpp"
@@ -173,14 +174,18 @@ void add_scan_command(CLI::App& app) {
   auto opts = std::make_shared<ScanCliOptions>();
   auto* cmd = app.add_subcommand("scan", "Measure a laser-marked path on a scan (thesis 4.6): length, deviation area, width");
   cmd->add_option("image", opts->image, "Scan (PNG, TIFF or JPEG; grey or colour; 8 or 16 bit)")->required();
-  opts->dpi_option = cmd->add_option("--dpi", opts->dpi, "Resolution (dpi); overrides the file's metadata (default: metadata, else 1200)");
+  opts->dpi_option = cmd->add_option("--dpi", opts->dpi, "Resolution (dpi); overrides the file's metadata (default: metadata, else 1200)")
+      ->check(within(10, 100000.0, "dpi"));
   opts->shape_option = cmd->add_option("--shape", opts->shape, "line, triangle, polyline:N or any (default line; any with --all-marks)");
   cmd->add_option("--roi", opts->roi, "Measure only the region X,Y,W,H: mm from the image's top-left corner, or pixels with a px suffix (10,20,80,30px)");
   cmd->add_flag("--all-marks", opts->all_marks, "Measure every mark on the scan (a plate): one result per mark with its bounding box");
-  cmd->add_option("--min-mark-mm", opts->min_mark_mm, "With --all-marks: smaller dark features are listed as labels, not measured (mm)")->capture_default_str();
+  cmd->add_option("--min-mark-mm", opts->min_mark_mm, "With --all-marks: smaller dark features are listed as labels, not measured (mm)")->capture_default_str()
+      ->check(within(0.001, 1000, "mm"));
   cmd->add_option("--overlay", opts->overlay, "Write a picture of the detected centre line, fitted line and spline (PNG)");
-  cmd->add_option("--spline-cutoff-mm", opts->cutoff_mm, "Smoothing spline cutoff wavelength (mm)")->capture_default_str();
-  cmd->add_option("--corner-trim-mm", opts->trim_mm, "Part of each side next to a corner left out (mm)")->capture_default_str();
+  cmd->add_option("--spline-cutoff-mm", opts->cutoff_mm, "Smoothing spline cutoff wavelength (mm)")->capture_default_str()
+      ->check(within(0, 10000.0, "mm"));
+  cmd->add_option("--corner-trim-mm", opts->trim_mm, "Part of each side next to a corner left out (mm)")->capture_default_str()
+      ->check(within(0, 1000, "mm"));
   cmd->add_flag("--json", opts->json, "Print one JSON object with units in its keys");
   cmd->add_flag("--quiet", opts->quiet, "No progress bar (it is shown only on a terminal anyway)");
   cmd->callback([opts] { run_scan(*opts); });

@@ -1,13 +1,18 @@
 // `stiffpath simulate`: a joint trajectory from `stiffpath run` through the digital twin, measured like the thesis's marks.
 #include <algorithm>
 #include <fmt/format.h>
+#include <iostream>
 #include <memory>
+#include <optional>
 
+#include "bounded.hpp"
 #include "commands.hpp"
 #include "robot_flags.hpp"
+#include "twin_flags.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/job/joint_reader.hpp"
 #include "stiffpath/core/atomic_file.hpp"
+#include "stiffpath/simulation/cg_lever.hpp"
 #include "stiffpath/simulation/run_metrics.hpp"
 #include "stiffpath/simulation/twin_models.hpp"
 
@@ -17,35 +22,36 @@ namespace {
 struct SimulateArgs {
   std::string joints;
   std::string robot;  // default: the binary file's robot (a preset), else oc-gu
-  int sides = 1;
-  double perturbation = simulation::TrueComplianceOptions{}.perturbation;
-  std::uint64_t seed = simulation::TrueComplianceOptions{}.seed;
+  int sides = 0;  // 0: inferred per stroke from its commanded corners
+  simulation::TrueComplianceOptions truth;
+  TwinFlags twin;
   simulation::SimulationOptions sim;
   std::string marks_csv;
   bool json = false;
+  bool force_robot = false;
 };
 
 // The laser's mark as x_mm, y_mm in marking order, y flipped to the scan's downward axis, so that
-// `stiffpath render-scan --path-csv` draws it as the paper would show it.
-void write_marks(const std::string& path, const simulation::SimulationResult& run) {
-  core::AtomicFile file(path);
-  auto& out = file.stream();
-  out << "x_mm,y_mm\n";
-  for (const auto& p : run.marked) out << fmt::format("{:.6f},{:.6f}\n", p.x() * 1e3, -p.y() * 1e3);
-  file.commit();
-}
+// `stiffpath render-scan --path-csv` draws it as the paper would show it. Written stroke by stroke.
+class MarksFile {
+ public:
+  explicit MarksFile(const std::string& path) : file_(path) { file_.stream() << "x_mm,y_mm\n"; }
+  void add(const simulation::Stroke& stroke) {
+    for (const auto& p : stroke.marked) file_.stream() << fmt::format("{:.6f},{:.6f}\n", p.x() * 1e3, -p.y() * 1e3);
+  }
+  void commit() { file_.commit(); }
 
-void simulate(const SimulateArgs& a) {
-  job::JointReader reader(a.joints);
-  const std::string written_for = reader.mechanism();
+ private:
+  core::AtomicFile file_;
+};
+
+// The robot to simulate: --robot, else the one the file records (a preset), else oc-gu. A file written
+// for another robot (name or geometry) is refused unless --force-robot.
+kinematics::Robot pick_robot(const SimulateArgs& a, const job::JointReader& reader) {
+  const std::string& written_for = reader.mechanism();
   kinematics::Robot robot;
   if (!a.robot.empty()) {
     robot = kinematics::load_robot(a.robot);
-    if (!written_for.empty() && written_for != robot.name) {
-      throw Error(SourceLocation{a.joints}, fmt::format("the joint file was written for robot '{}', not for '{}' "
-                                                        "(named by --robot {})",
-                                                        written_for, robot.name, a.robot));
-    }
   } else if (!written_for.empty()) {
     const auto presets = kinematics::preset_names();
     if (std::find(presets.begin(), presets.end(), written_for) == presets.end()) {
@@ -58,38 +64,97 @@ void simulate(const SimulateArgs& a) {
   } else {
     robot = load_robot_flag("");
   }
-  const auto truth = simulation::make_true_compliance(robot, {"", a.perturbation, a.seed});
-  const simulation::SimulationResult run =
-      simulation::simulate([&reader] { return reader.next(); }, robot, truth, a.sim);
-  const simulation::RunMetrics m = simulation::measure_run(run, a.sides);
-  if (!a.marks_csv.empty()) write_marks(a.marks_csv, run);
-  const auto corner_metric = [&m](double value_m) -> nlohmann::json {
-    return m.corners == 0 ? nlohmann::json(nullptr) : nlohmann::json(tidy(value_m * 1e3));
-  };
+  const std::string& hash = reader.geometry_hash();
+  const bool other_name = !written_for.empty() && written_for != robot.name;
+  const bool other_geometry = !hash.empty() && hash != robot.geometry_hash();
+  if ((other_name || other_geometry) && !a.force_robot) {
+    throw Error(SourceLocation{a.joints},
+                fmt::format("the joint file was written for robot '{}' (geometry {}), not for '{}' (geometry {}, {}); "
+                            "--force-robot simulates it anyway",
+                            written_for, hash.empty() ? "not recorded" : hash.substr(0, 12), robot.name,
+                            robot.geometry_hash().substr(0, 12), robot.source()));
+  }
+  return robot;
+}
+
+nlohmann::json mm(double value_m, bool valid = true) { return valid ? nlohmann::json(tidy(value_m * 1e3)) : nlohmann::json(nullptr); }
+
+// The line metrics (null when refused), AT_p and the corner metrics (null without corners) of a job or a stroke.
+void put_metrics(nlohmann::json& j, const simulation::RunMetrics& m, bool path_accuracy) {
+  const bool line = m.line_strokes > 0;
+  j["length_mm"] = mm(m.length_m, line);
+  j["commanded_length_mm"] = mm(m.commanded_length_m, line);
+  j["length_error_mm"] = mm(m.length_error_m, line);
+  j["deviation_area_mm2"] = line ? nlohmann::json(tidy(m.deviation_area_m2 * 1e6)) : nlohmann::json(nullptr);
+  j["max_deviation_mm"] = mm(m.max_deviation_m, line);
+  j["path_accuracy_mm"] = mm(m.path_accuracy_m, path_accuracy);
+  j["corners"] = m.corners;
+  j["cornering_round_off_mm"] = mm(m.cornering_round_off_m, m.corners > 0);
+  j["cornering_overshoot_mm"] = mm(m.cornering_overshoot_m, m.corners > 0);
+}
+
+void simulate(const SimulateArgs& a) {
+  job::JointReader reader(a.joints);
+  const kinematics::Robot robot = pick_robot(a, reader);
+  simulation::TrueComplianceOptions truth_options = a.truth;
+  simulation::SimulationOptions sim = a.sim;
+  apply_twin_flags(a.twin, sim, truth_options);
+  if (!a.twin.no_cg_lever) sim.cg_lever = simulation::make_cg_lever(robot);
+  const auto truth = simulation::make_true_compliance(robot, truth_options);
+  simulation::RunMeter meter(a.sides);
+  std::optional<MarksFile> marks;
+  if (!a.marks_csv.empty()) marks.emplace(a.marks_csv);
+  std::size_t marked_points = 0;
+  const simulation::SimulationResult run = simulation::simulate(
+      [&reader] { return reader.next(); }, robot, truth, sim, [&](const simulation::Stroke& stroke) {
+        meter.add(stroke);
+        marked_points += stroke.marked.size();
+        if (marks) marks->add(stroke);
+      });
+  const simulation::RunMetrics m = meter.totals(run);
+  if (marks) marks->commit();
   if (a.json) {
-    print_json({{"joints", a.joints},
-                {"robot", robot.name},
-                {"duration_s", tidy(run.duration_s)},
-                {"marked_points", run.marked.size()},
-                {"length_mm", tidy(m.length_m * 1e3)},
-                {"commanded_length_mm", tidy(m.commanded_length_m * 1e3)},
-                {"length_error_mm", tidy(m.length_error_m * 1e3)},
-                {"deviation_area_mm2", tidy(m.deviation_area_m2 * 1e6)},
-                {"max_deviation_mm", tidy(m.max_deviation_m * 1e3)},
-                {"path_accuracy_mm", tidy(m.path_accuracy_m * 1e3)},
-                {"corners", m.corners},
-                {"cornering_round_off_mm", corner_metric(m.cornering_round_off_m)},
-                {"cornering_overshoot_mm", corner_metric(m.cornering_overshoot_m)},
-                {"residual_vibration_mm", tidy(m.residual_vibration_m * 1e3)},
-                {"peak_deflection_mm", tidy(m.peak_deflection_m * 1e3)}});
+    nlohmann::json j{{"joints", a.joints}, {"robot", robot.name}, {"duration_s", tidy(run.duration_s)},
+                     {"marked_points", marked_points}};
+    put_metrics(j, m, true);
+    j["residual_vibration_mm"] = tidy(m.residual_vibration_m * 1e3);
+    j["peak_deflection_mm"] = tidy(m.peak_deflection_m * 1e3);
+    j["strokes"] = meter.stroke_count();
+    j["line_strokes"] = m.line_strokes;
+    // The stroke list is written one stroke at a time: a document of a long job's thousands of strokes
+    // would cost more memory than the simulation.
+    std::string head = j.dump(2);
+    head.resize(head.rfind('}'));
+    while (!head.empty() && head.back() == '\n') head.pop_back();
+    std::cout << head << ",\n  \"stroke_metrics\": [";
+    bool first = true;
+    for (const auto& s : meter.strokes()) {
+      nlohmann::json one{{"stroke", s.index + 1}, {"start_s", tidy(s.start_s)}, {"end_s", tidy(s.end_s)},
+                         {"marked_points", s.marked_points}, {"sides", s.sides}};
+      put_metrics(one, s.metrics, s.path_accuracy);
+      if (!s.refusal.empty()) one["refusal"] = s.refusal;
+      std::cout << (first ? "\n    " : ",\n    ") << one.dump();
+      first = false;
+    }
+    std::cout << (first ? "]\n}\n" : "\n  ]\n}\n");
     return;
   }
-  fmt::print("{}: simulated {:.4f} s on {} (C_true perturbation {:g}, seed {})\n", a.joints, run.duration_s, robot.name,
-             a.perturbation, a.seed);
-  fmt::print("  length {:.4f} mm (commanded {:.4f} mm, error {:+.4f} mm)\n", m.length_m * 1e3,
-             m.commanded_length_m * 1e3, m.length_error_m * 1e3);
-  fmt::print("  deviation area {:.4f} mm^2, max deviation {:.4f} mm, path accuracy AT_p {:.4f} mm\n",
-             m.deviation_area_m2 * 1e6, m.max_deviation_m * 1e3, m.path_accuracy_m * 1e3);
+  fmt::print("{}: simulated {:.4f} s on {} (C_true {} perturbed {:g}, seed {}; {} servo{}), {} laser stroke{}\n",
+             a.joints, run.duration_s, robot.name, truth_options.family, truth_options.perturbation, truth_options.seed,
+             a.twin.servo, sim.cg_lever ? ", CG lever" : "", meter.stroke_count(), meter.stroke_count() == 1 ? "" : "s");
+  if (m.line_strokes > 0) {
+    const std::string over = m.line_strokes == 1 && meter.stroke_count() == 1
+                                 ? std::string()
+                                 : fmt::format(" (summed over {} of {} strokes)", m.line_strokes, meter.stroke_count());
+    fmt::print("  length {:.4f} mm (commanded {:.4f} mm, error {:+.4f} mm){}\n", m.length_m * 1e3,
+               m.commanded_length_m * 1e3, m.length_error_m * 1e3, over);
+    fmt::print("  deviation area {:.4f} mm^2, max deviation {:.4f} mm\n", m.deviation_area_m2 * 1e6,
+               m.max_deviation_m * 1e3);
+  }
+  for (const auto& s : meter.strokes()) {
+    if (!s.refusal.empty()) fmt::print("  stroke {}: no line metrics: {}\n", s.index + 1, s.refusal);
+  }
+  fmt::print("  path accuracy AT_p {:.4f} mm (largest over the strokes)\n", m.path_accuracy_m * 1e3);
   if (m.corners > 0) {
     fmt::print("  {} corners: round-off CR {:.4f} mm, overshoot CO {:.4f} mm (largest)\n", m.corners,
                m.cornering_round_off_m * 1e3, m.cornering_overshoot_m * 1e3);
@@ -103,20 +168,15 @@ void add_simulate_command(CLI::App& app) {
   auto a = std::make_shared<SimulateArgs>();
   auto* cmd = app.add_subcommand("simulate", "Run a joint trajectory (from `run`) on the digital twin and measure the mark");
   cmd->add_option("joints", a->joints, "Joint trajectory file (CSV or binary)")->required();
-  add_robot_flag(cmd, a->robot)->description("Robot (preset or file) the joints were made for (default: the binary "
-                                            "file's preset, else oc-gu); its data give C_true");
-  cmd->add_option("--sides", a->sides, "Straight sides of the path: 1 (line) or 3 (triangle)")
-      ->check(CLI::Range(1, 12))->capture_default_str();
-  cmd->add_option("--perturbation", a->perturbation, "Relative perturbation of C_true")
-      ->check(CLI::Range(0.0, 0.5))->capture_default_str();
-  cmd->add_option("--seed", a->seed, "Seed of the perturbation")->capture_default_str();
-  cmd->add_option("--damping-ratio", a->sim.plant.tip_damping_ratio, "Damping ratio of the tip's modes")
-      ->check(CLI::Range(0.0, 2.0))->capture_default_str();
-  cmd->add_option("--servo-bandwidth-hz", a->sim.plant.servo_bandwidth_hz, "Joint position-loop bandwidth")
-      ->check(CLI::PositiveNumber)->capture_default_str();
-  cmd->add_option("--step-rate-hz", a->sim.plant.step_rate_hz, "Integration rate")
-      ->check(CLI::Range(1000.0, 1e7))->capture_default_str();
+  add_robot_flag(cmd, a->robot)->description("Robot (preset or file) the joints were made for (default: the preset the file "
+                                            "records, else oc-gu); its data give C_true");
+  cmd->add_option("--sides", a->sides, "Straight sides of each laser stroke: 1 (line), 3 (triangle); 0 infers "
+                                      "them from the stroke's sharp corners")
+      ->check(CLI::Range(0, 12))->capture_default_str();
+  cmd->add_option("--seed", a->truth.seed, "Seed of the perturbation")->capture_default_str();
+  add_twin_flags(cmd, a->twin, a->sim, a->truth);
   cmd->add_option("--marks-csv", a->marks_csv, "Also write the mark (x_mm, y_mm, y down) for `render-scan --path-csv`");
+  cmd->add_flag("--force-robot", a->force_robot, "Simulate a joint file written for another robot anyway");
   cmd->add_flag("--json", a->json, "Print the metrics as JSON");
   cmd->callback([a] { simulate(*a); });
 }

@@ -1,8 +1,10 @@
 // Entry point of the stiffpath CLI: registers the subcommands and runs the one named.
 #include "cli_run.hpp"
 #include "commands.hpp"
+#include "stiffpath/core/signal_cleanup.hpp"
 
 int main(int argc, char** argv) {
+  stiffpath::core::install_signal_cleanup();  // an interrupted run leaves no temporary file
   CLI::App app{"stiffpath: compliance compensation for high-acceleration planar parallel robots"};
   app.set_version_flag("--version", std::string("stiffpath ") + STIFFPATH_VERSION);
   app.require_subcommand(1);

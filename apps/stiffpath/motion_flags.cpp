@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <fmt/format.h>
 
 #include "commands.hpp"
@@ -45,7 +46,8 @@ void add_motion_flags(CLI::App* cmd, MotionFlags& a) {
   enable_json_errors(cmd);  // a program's refusals are many: with --json they are one document
   a.max_velocity_mm_s = units::m_to_mm(motion::default_max_velocity_m_s);
   cmd->add_option("--accel", a.accel, "Acceleration limit, e.g. 5g or 49 (m/s^2)")->capture_default_str();
-  cmd->add_option("--jerk", a.jerk_m_s3, "Jerk limit (m/s^3); default: accel / 5 ms");
+  cmd->add_option("--jerk", a.jerk, "Jerk limit (m/s^3); default: accel / 5 ms; run: auto = accel x the tip's lowest "
+                                   "natural frequency on the job");
   cmd->add_option("--max-velocity-mm-s", a.max_velocity_mm_s, "Speed limit, also of G0 (mm/s)")->capture_default_str();
   cmd->add_option("--rate", a.rate_hz, "Sampling rate (Hz)")->capture_default_str();
   cmd->add_option("--work-offset-mm", a.work_offset_mm, "G54 origin in the robot frame: X,Y (mm)")
@@ -82,7 +84,18 @@ motion::PlanOptions plan_options(const MotionFlags& a, const kinematics::Robot& 
   }
   check("--accel", o.limits.max_acceleration_m_s2, motion::min_acceleration_limit_m_s2,
         motion::max_acceleration_limit_m_s2, "m/s^2");
-  o.limits.max_jerk_m_s3 = a.jerk_m_s3.value_or(motion::default_jerk_m_s3(o.limits.max_acceleration_m_s2));
+  std::optional<double> jerk = a.jerk_m_s3;
+  if (!jerk && !a.jerk.empty()) {
+    if (a.jerk == "auto") throw Error("--jerk auto: only `stiffpath run` knows the tip's natural frequency");
+    try {
+      std::size_t used = 0;
+      jerk = std::stod(a.jerk, &used);
+      if (used != a.jerk.size()) throw std::invalid_argument("trailing text");
+    } catch (const std::exception&) {
+      throw Error("--jerk: expected a number (m/s^3) or auto, got '" + a.jerk + "'");
+    }
+  }
+  o.limits.max_jerk_m_s3 = jerk.value_or(motion::default_jerk_m_s3(o.limits.max_acceleration_m_s2));
   check("--jerk", o.limits.max_jerk_m_s3, motion::min_jerk_limit_m_s3, motion::max_jerk_limit_m_s3, "m/s^3");
   check("--max-velocity-mm-s", a.max_velocity_mm_s, units::m_to_mm(motion::min_velocity_limit_m_s),
         units::m_to_mm(motion::max_velocity_limit_m_s), "mm/s");

@@ -14,7 +14,8 @@ namespace stiffpath::cli {
 
 struct MotionFlags {
   std::string accel = "5g";
-  std::optional<double> jerk_m_s3;
+  std::string jerk;                  // m/s^3, empty: accel / 5 ms, "auto": from the tip (run resolves it)
+  std::optional<double> jerk_m_s3;   // the number --jerk gave, or the one `run` chose for "auto"
   double max_velocity_mm_s = 0.0;  // set from motion's default in add_motion_flags
   double rate_hz = motion::default_sample_rate_hz;
   std::vector<double> work_offset_mm;

@@ -94,7 +94,12 @@ const char* stiffpath_status_text(int status) noexcept {
 
 stiffpath_options stiffpath_default_options(void) noexcept {
   const sp::compensation::CompensatorOptions defaults;
-  return {defaults.gain, defaults.enabled ? 1 : 0, defaults.check_limits ? 1 : 0, STIFFPATH_OUTSIDE_MODEL_DEFAULT};
+  return {defaults.gain,
+          defaults.enabled ? 1 : 0,
+          defaults.check_limits ? 1 : 0,
+          STIFFPATH_OUTSIDE_MODEL_DEFAULT,
+          defaults.method == sp::compensation::Method::dynamic ? STIFFPATH_METHOD_DYNAMIC : STIFFPATH_METHOD_QUASI_STATIC,
+          defaults.damping_ratio};
 }
 
 stiffpath_robot* stiffpath_robot_load(const char* robot, char* error, size_t error_size) noexcept {
@@ -155,7 +160,14 @@ stiffpath_compensator* stiffpath_compensator_create(const char* robot, const cha
           default: throw sp::Error("outside_policy " + std::to_string(o.outside_policy) + " is not one of 0..3");
         }
         const std::shared_ptr<const sp::compliance::Model> shared(std::move(loaded.model));
-        return new stiffpath_compensator(std::move(r), shared, {o.gain, o.enabled != 0, o.check_limits != 0});
+        sp::compensation::CompensatorOptions co{o.gain, o.enabled != 0, o.check_limits != 0};
+        switch (o.method) {
+          case STIFFPATH_METHOD_QUASI_STATIC: co.method = sp::compensation::Method::quasi_static; break;
+          case STIFFPATH_METHOD_DYNAMIC: co.method = sp::compensation::Method::dynamic; break;
+          default: throw sp::Error("method " + std::to_string(o.method) + " is not one of 0..1");
+        }
+        co.damping_ratio = o.damping_ratio;
+        return new stiffpath_compensator(std::move(r), shared, co);
       },
       error, error_size);
 }

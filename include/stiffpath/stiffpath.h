@@ -64,6 +64,12 @@ typedef enum stiffpath_outside_policy {
   STIFFPATH_OUTSIDE_ERROR = 3          /**< refuse the sample (STIFFPATH_OUTSIDE_GRID) */
 } stiffpath_outside_policy;
 
+/** How the deflection is predicted (stiffpath_options.method). */
+typedef enum stiffpath_method {
+  STIFFPATH_METHOD_QUASI_STATIC = 0, /**< the thesis's static deflection Δ = C·F (default) */
+  STIFFPATH_METHOD_DYNAMIC = 1       /**< the tip model with its damping inverted (docs/compensation.md) */
+} stiffpath_method;
+
 /** A robot description (geometry, mass, limits), loaded from a robot file or a preset. Opaque. */
 typedef struct stiffpath_robot stiffpath_robot;
 /** A robot with a compliance model: the real-time compensation step. Opaque. */
@@ -75,6 +81,8 @@ typedef struct stiffpath_options {
   int enabled;          /**< 0: p_cmd = p, the "without compensation" command (default 1) */
   int check_limits;     /**< check reach and joint limits on every step (default 1) */
   int outside_policy;   /**< a stiffpath_outside_policy (default STIFFPATH_OUTSIDE_MODEL_DEFAULT) */
+  int method;           /**< a stiffpath_method (default STIFFPATH_METHOD_QUASI_STATIC; 0 keeps older callers' behaviour) */
+  double damping_ratio; /**< ζ of the tip's modes for STIFFPATH_METHOD_DYNAMIC, 0..2 (default 0.05) */
 } stiffpath_options;
 
 /** One sample of the planned end-point trajectory (SI, the robot's base frame). */

@@ -6,6 +6,7 @@
 #include <limits>
 #include <span>
 
+#include "stiffpath/compensation/tip_modes.hpp"
 #include "stiffpath/core/error.hpp"
 
 namespace stiffpath::compensation {
@@ -13,7 +14,7 @@ namespace stiffpath::compensation {
 const char* describe(Status status) noexcept {
   switch (status) {
     case Status::ok: return "ok";
-    case Status::not_finite: return "input sample is not finite";
+    case Status::not_finite: return "input sample, or a value computed from it, is not finite";
     case Status::outside_grid: return "point outside the compliance model's measured region (policy 'error')";
     case Status::unreachable: return "corrected target is not reachable with the mechanism's singularity margin";
     case Status::joint_position: return "joint position limit exceeded";
@@ -21,6 +22,20 @@ const char* describe(Status status) noexcept {
     case Status::joint_acceleration: return "joint acceleration limit exceeded";
   }
   return "unknown";
+}
+
+const char* to_string(Method method) noexcept {
+  switch (method) {
+    case Method::quasi_static: return "quasi-static";
+    case Method::dynamic: return "dynamic";
+  }
+  return "unknown";
+}
+
+Method parse_method(const std::string& text) {
+  if (text == "quasi-static") return Method::quasi_static;
+  if (text == "dynamic") return Method::dynamic;
+  throw Error("compensation method must be quasi-static or dynamic, got '" + text + "'");
 }
 
 namespace {
@@ -33,6 +48,33 @@ bool finite(const Vec2& v) noexcept { return std::isfinite(v.x()) && std::isfini
 // sends its operands through memory. Same arithmetic, so the same numbers.
 Vec2 times(const Mat2& M, const Vec2& v) noexcept {
   return {M(0, 0) * v.x() + M(0, 1) * v.y(), M(1, 0) * v.x() + M(1, 1) * v.y()};
+}
+
+bool finite(const Mat2& M) noexcept {
+  return std::isfinite(M(0, 0)) && std::isfinite(M(0, 1)) && std::isfinite(M(1, 0)) && std::isfinite(M(1, 1));
+}
+
+// Mᵀ·v.
+Vec2 times_transposed(const Mat2& M, const Vec2& v) noexcept {
+  return {M(0, 0) * v.x() + M(1, 0) * v.y(), M(0, 1) * v.x() + M(1, 1) * v.y()};
+}
+
+// A finite result, always: a value that overflowed (a huge but finite input, a huge gain) turns the
+// step into a not_finite refusal with every vector zeroed.
+JointCommand& finite_or_refused(JointCommand& c) noexcept {
+  if (finite(c.q_rad) && finite(c.qd_rad_s) && finite(c.qdd_rad_s2) && finite(c.target_m) && finite(c.command_m) &&
+      finite(c.force_N) && finite(c.deflection_m) && finite(c.load_torque_Nm) && std::isfinite(c.t_s)) {
+    return c;
+  }
+  const double t = std::isfinite(c.t_s) ? c.t_s : 0.0;
+  const bool laser = c.laser_on;
+  const int line = c.line;
+  c = JointCommand{};
+  c.t_s = t;
+  c.laser_on = laser;
+  c.line = line;
+  c.status = Status::not_finite;
+  return c;
 }
 
 // The 2×2 inverse by the adjugate, as Eigen computes it (one division).
@@ -48,6 +90,12 @@ Compensator::Compensator(const kinematics::Robot& robot, std::shared_ptr<const c
                          CompensatorOptions options)
     : spec_(robot), five_bar_(robot.five_bar()), model_(std::move(model)), options_(options) {
   if (!std::isfinite(options_.gain) || options_.gain < 0.0) throw Error("compensation gain must be finite and >= 0");
+  if (!(options_.damping_ratio >= 0.0 && options_.damping_ratio <= 2.0)) {
+    throw Error("compensation damping ratio must lie in 0..2, got " + std::to_string(options_.damping_ratio));
+  }
+  if (options_.method != Method::quasi_static && options_.method != Method::dynamic) {
+    throw Error("unknown compensation method");
+  }
   effective_gain_ = options_.enabled ? options_.gain : 0.0;
   if (!model_ && effective_gain_ != 0.0) throw Error("compensator needs a compliance model");
   // Without a model (no compensation asked for) nothing is outside and nothing is predicted.
@@ -57,14 +105,21 @@ Compensator::Compensator(const kinematics::Robot& robot, std::shared_ptr<const c
 }
 
 JointCommand Compensator::step(const TaskSample& s) const noexcept {
+  JointCommand c = step_unchecked(s);
+  return finite_or_refused(c);
+}
+
+JointCommand Compensator::step_unchecked(const TaskSample& s) const noexcept {
   JointCommand c;
   c.t_s = s.t_s;
   c.target_m = s.position_m;
   c.laser_on = s.laser_on;
+  c.power = s.power;
   c.line = s.line;
-  if (!finite(s.position_m) || !finite(s.velocity_m_s) || !finite(s.acceleration_m_s2) || !finite(s.jerk_m_s3) ||
-      !finite(s.snap_m_s4)) {
+  if (!std::isfinite(s.t_s) || !finite(s.position_m) || !finite(s.velocity_m_s) || !finite(s.acceleration_m_s2) ||
+      !finite(s.jerk_m_s3) || !finite(s.snap_m_s4) || !finite(s.crackle_m_s5)) {
     c.status = Status::not_finite;
+    c.t_s = std::isfinite(s.t_s) ? s.t_s : 0.0;
     c.target_m = Vec2::Zero();
     return c;
   }
@@ -91,6 +146,13 @@ JointCommand Compensator::step(const TaskSample& s) const noexcept {
     const Vec2 drift = 0.5 * h * h * s.acceleration_m_s2;
     points[1] = s.position_m + h * s.velocity_m_s + drift;
     points[2] = s.position_m - h * s.velocity_m_s + drift;
+    if (options_.method == Method::dynamic) {
+      // The tip's stiffness belongs to the mechanism's pose, i.e. the base point p_b = p + k·δ, not to
+      // the planned point: one fixed-point step, C at p + k·m·C(p)·a (δ is up to ~1 mm at 5 g, where
+      // C changes by a few per mille).
+      const Vec2 base_shift = k * m * times(model_->compliance(s.position_m), s.acceleration_m_s2);
+      for (Vec2& q : points) q += base_shift;
+    }
   }
   if (model_) {
     model_->compliance_batch(std::span<const Vec2>(points.data(), k != 0.0 ? 3 : 1), Cs);
@@ -104,13 +166,37 @@ JointCommand Compensator::step(const TaskSample& s) const noexcept {
 
   Vec2 pd_cmd = s.velocity_m_s, pdd_cmd = s.acceleration_m_s2;
   if (k != 0.0) {
-    // Δ = −m·C(p(t))·a(t): dΔ/dt = −m·(C·j + Ċ·a), d²Δ/dt² = −m·(C·s + 2·Ċ·j + C̈·a).
+    // δ₀ = m·C(p(t))·a(t) = −Δ: δ̇₀ = m·(C·j + Ċ·a), δ̈₀ = m·(C·s + 2·Ċ·j + C̈·a).
     const Mat2& C_after = Cs[1];
     const Mat2& C_before = Cs[2];
     const Mat2 C_dot = (C_after - C_before) * (0.5 * inverse_h);
     const Mat2 C_ddot = (C_after - 2.0 * C + C_before) * (inverse_h * inverse_h);
-    pd_cmd += k * m * (times(C, s.jerk_m_s3) + times(C_dot, s.acceleration_m_s2));
-    pdd_cmd += k * m * (times(C, s.snap_m_s4) + 2.0 * times(C_dot, s.jerk_m_s3) + times(C_ddot, s.acceleration_m_s2));
+    const Vec2 rate = m * (times(C, s.jerk_m_s3) + times(C_dot, s.acceleration_m_s2));
+    const Vec2 curvature =
+        m * (times(C, s.snap_m_s4) + 2.0 * times(C_dot, s.jerk_m_s3) + times(C_ddot, s.acceleration_m_s2));
+    if (options_.method == Method::dynamic) {
+      // δ = δ₀ − T·δ̇₀ + T²·δ̈₀ − T³·δ⃛₀ solves δ + T·δ̇ = δ₀ wherever d⁴δ₀/dt⁴ = 0 (constant crackle, as
+      // in the smoothed plans). δ⃛₀ = m·(C·c + 3·Ċ·s + 3·C̈·j) (C⃛ dropped); the rates use T's own rates
+      // Ṫ, T̈ from T at the neighbouring points and drop products of two of them and d⁴δ₀/dt⁴.
+      const double zeta = options_.damping_ratio;
+      const Mat2 T = tip_time_constant(C, m, zeta);
+      const Mat2 T_after = tip_time_constant(C_after, m, zeta), T_before = tip_time_constant(C_before, m, zeta);
+      const Mat2 T_dot = (T_after - T_before) * (0.5 * inverse_h);
+      const Mat2 T_ddot = (T_after - 2.0 * T + T_before) * (inverse_h * inverse_h);
+      const Vec2 third =
+          m * (times(C, s.crackle_m_s5) + 3.0 * times(C_dot, s.snap_m_s4) + 3.0 * times(C_ddot, s.jerk_m_s3));
+      const Vec2 T_rate = times(T, rate), T_curvature = times(T, curvature), T_third = times(T, third);
+      const Vec2 TT_third = times(T, T_third);
+      const Vec2 lag = times(T, T_curvature - TT_third) - T_rate;  // δ − δ₀
+      c.deflection_m -= lag;                                        // −δ, in the sign of Δ = C·F
+      c.command_m = s.position_m - k * c.deflection_m;
+      pd_cmd += k * (rate - times(T_dot, rate) - T_curvature + TT_third);
+      pdd_cmd += k * (curvature - times(T_ddot, rate) - 2.0 * times(T_dot, curvature) - T_third);
+    } else {
+      // The thesis's step, in its original order of operations (k·m·(…)), so its commands stay bit-identical.
+      pd_cmd += k * m * (times(C, s.jerk_m_s3) + times(C_dot, s.acceleration_m_s2));
+      pdd_cmd += k * m * (times(C, s.snap_m_s4) + 2.0 * times(C_dot, s.jerk_m_s3) + times(C_ddot, s.acceleration_m_s2));
+    }
   }
 
   kinematics::InverseFrame frame;
@@ -123,6 +209,7 @@ JointCommand Compensator::step(const TaskSample& s) const noexcept {
   const Mat2 J_inv = inverse(frame.jacobian);
   c.qd_rad_s = times(J_inv, pd_cmd);
   c.qdd_rad_s2 = times(J_inv, pdd_cmd - times(five_bar_.jacobian_dot(frame, c.qd_rad_s), c.qd_rad_s));
+  c.load_torque_Nm = times_transposed(frame.jacobian, m * s.acceleration_m_s2);
   if (options_.check_limits) {
     int joint = -1;
     switch (kinematics::check_joint_limits(spec_.joints, c.q_rad, c.qd_rad_s, c.qdd_rad_s2, joint)) {

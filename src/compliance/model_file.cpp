@@ -49,6 +49,10 @@ void save_model(const std::string& path, const Model& model, const Provenance& p
 }
 
 namespace {
+//! Largest compliance entry a model file may give (um/N): 1 mm per newton, about 10^3 times the
+//! thesis robots' (0.5-2.5 um/N), so any real robot passes and 1e300 does not.
+constexpr double max_compliance_um_per_N = 1e3;
+
 // A JSON array of exactly `n` finite numbers.
 std::vector<double> numbers(const core::JsonObject& obj, std::string_view key, std::size_t n) {
   const auto& a = obj.array(key);
@@ -187,6 +191,21 @@ LoadedModel model_from_json(const core::JsonDocument& document) {
     out.model = physical_model_from(root, out.provenance.geometry);
   } else {
     root.fail("method", "'" + method + "' is not one of bilinear, symmetric, physical");
+  }
+  // Physics bounds the model, whatever its parameters: over its measured region (corners, edges' middles,
+  // centre) every compliance entry is finite and within ±max_compliance_um_per_N.
+  const GridBounds b = out.model->bounds();
+  for (const double fx : {0.0, 0.5, 1.0}) {
+    for (const double fy : {0.0, 0.5, 1.0}) {
+      const Vec2 p{b.x_min + fx * (b.x_max - b.x_min), b.y_min + fy * (b.y_max - b.y_min)};
+      const Mat2 c = out.model->compliance(p) * 1e6;
+      if (!c.allFinite() || c.cwiseAbs().maxCoeff() > max_compliance_um_per_N) {
+        root.fail(method == "physical" ? "D_um_per_N" : "nodes",
+                  fmt::format("RANGE: the model's compliance at ({:.1f}, {:.1f}) mm is [{:g} {:g}; {:g} {:g}] um/N, beyond "
+                              "±{:g} um/N",
+                              p.x() * 1e3, p.y() * 1e3, c(0, 0), c(0, 1), c(1, 0), c(1, 1), max_compliance_um_per_N));
+      }
+    }
   }
   const auto parsed = [](const core::JsonObject& obj, const char* key, auto parse) {
     const std::string text = obj.string(key);

@@ -110,13 +110,8 @@ nlohmann::json PhysicalModel::parameters() const {
 std::unique_ptr<PhysicalModel> fit_physical_model(const std::vector<PointSamples>& points,
                                                   const kinematics::FiveBarGeometry& geometry, int order,
                                                   const std::string& source) {
-  GridBounds g{1e300, -1e300, 1e300, -1e300};
-  for (const auto& p : points) {
-    g.x_min = std::min(g.x_min, p.position.x());
-    g.x_max = std::max(g.x_max, p.position.x());
-    g.y_min = std::min(g.y_min, p.position.y());
-    g.y_max = std::max(g.y_max, p.position.y());
-  }
+  auto g = GridBounds::none();
+  for (const auto& p : points) g.include(p.position);
   if (points.empty() || !(g.x_max > g.x_min) || !(g.y_max > g.y_min)) {
     throw Error(SourceLocation{source}, "the physical model needs points spread over x and y");
   }

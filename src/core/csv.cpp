@@ -17,18 +17,36 @@ std::optional<double> parse_double(std::string_view text) noexcept {
   return value;
 }
 
+namespace {
+// A column named twice makes every lookup by name ambiguous: refuse it at the second occurrence.
+void refuse_duplicate_columns(const std::vector<std::string>& header, const std::vector<int>& starts,
+                              const std::string& label, int line) {
+  for (std::size_t i = 1; i < header.size(); ++i) {
+    if (header[i].empty()) continue;
+    for (std::size_t k = 0; k < i; ++k) {
+      if (header[k] != header[i]) continue;
+      throw Error(SourceLocation{label, line, i < starts.size() ? starts[i] : 1},
+                  "DUPLICATE: column '" + header[i] + "' appears twice in the header (columns " + std::to_string(k + 1) +
+                      " and " + std::to_string(i + 1) + ")");
+    }
+  }
+}
+}  // namespace
+
 CsvReader::CsvReader(const std::string& path)
     : owned_(std::make_unique<std::ifstream>(path, std::ios::binary)), in_(owned_.get()), label_(path) {
   if (!*owned_) throw Error(SourceLocation{path}, "cannot open file");
   std::vector<int> starts;
   if (!read_record(header_, starts)) throw Error(SourceLocation{path}, "file is empty (no header line)");
   header_line_ = line_;
+  refuse_duplicate_columns(header_, starts, label_, header_line_);
 }
 
 CsvReader::CsvReader(std::istream& in, std::string label) : in_(&in), label_(std::move(label)) {
   std::vector<int> starts;
   if (!read_record(header_, starts)) throw Error(SourceLocation{label_}, "input is empty (no header line)");
   header_line_ = line_;
+  refuse_duplicate_columns(header_, starts, label_, header_line_);
 }
 
 bool CsvReader::read_record(std::vector<std::string>& fields, std::vector<int>& starts) {
@@ -118,7 +136,12 @@ std::string_view CsvReader::text(std::size_t col) const {
 double CsvReader::number(std::size_t col) const {
   const std::string_view cell = text(col);
   if (cell.empty()) fail(col, "value is missing (empty cell)");
-  if (auto value = parse_double(cell)) return *value;
+  if (auto value = parse_double(cell)) {
+    if (std::abs(*value) > max_csv_magnitude) {
+      fail(col, "RANGE: " + std::string(cell) + " is beyond ±1e12, larger than any quantity a stiffpath file holds");
+    }
+    return *value;
+  }
   fail(col, "'" + std::string(cell) + "' is not a finite number");
 }
 

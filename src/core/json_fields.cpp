@@ -10,6 +10,9 @@
 namespace stiffpath::core {
 
 namespace {
+// Largest magnitude of a number field (number() and what builds on it), as for CSV files (csv.hpp).
+constexpr double max_json_magnitude = 1e12;
+
 // Converts a byte offset into a 1-based line and column.
 SourceLocation locate(std::string_view text, std::size_t byte, const std::string& label) {
   SourceLocation where{label, 1, 1};
@@ -27,7 +30,9 @@ SourceLocation locate(std::string_view text, std::size_t byte, const std::string
 std::string type_name(const nlohmann::json& v) { return v.type_name(); }
 }  // namespace
 
-nlohmann::json parse_json(std::string_view text, const std::string& label) {
+namespace {
+// Parses without the duplicate-key check. A number beyond double's range (1e400) is refused at its position.
+nlohmann::json parse_only(std::string_view text, const std::string& label) {
   try {
     return nlohmann::json::parse(text.begin(), text.end());
   } catch (const nlohmann::json::parse_error& e) {
@@ -35,7 +40,25 @@ nlohmann::json parse_json(std::string_view text, const std::string& label) {
     std::string message = e.what();
     if (auto pos = message.find("syntax error"); pos != std::string::npos) message = message.substr(pos);
     throw Error(locate(text, byte, label), "invalid JSON: " + message);
+  } catch (const nlohmann::json::out_of_range& e) {
+    std::string message = e.what();
+    std::size_t byte = 0;
+    const auto open = message.find('\'');
+    const auto close = open == std::string::npos ? open : message.find('\'', open + 1);
+    if (close != std::string::npos) {
+      const std::string token = message.substr(open + 1, close - open - 1);
+      if (const auto at = text.find(token); at != std::string_view::npos) byte = at;
+      message = "RANGE: number " + token + " is beyond the range of a double (about 1.8e308)";
+    }
+    throw Error(locate(text, byte, label), "invalid JSON: " + message);
   }
+}
+}  // namespace
+
+nlohmann::json parse_json(std::string_view text, const std::string& label) {
+  nlohmann::json value = parse_only(text, label);
+  (void)index_json_keys(text, label);  // refuses duplicated keys
+  return value;
 }
 
 nlohmann::json read_json_file(const std::string& path) {
@@ -47,8 +70,8 @@ nlohmann::json read_json_file(const std::string& path) {
 }
 
 JsonDocument parse_json_document(std::string_view text, const std::string& label) {
-  JsonDocument doc{parse_json(text, label), label, {}};
-  doc.keys = index_json_keys(text);
+  JsonDocument doc{parse_only(text, label), label, {}};
+  doc.keys = index_json_keys(text, label);
   return doc;
 }
 
@@ -128,6 +151,7 @@ double JsonObject::number(std::string_view key) const {
   if (!v.is_number()) fail(key, "must be a number, got " + type_name(v) + " " + v.dump());
   const double x = v.get<double>();
   if (!std::isfinite(x)) fail(key, "must be finite");
+  if (std::abs(x) > max_json_magnitude) fail(key, "RANGE: " + v.dump() + " is beyond ±1e12, larger than any quantity a stiffpath file holds");
   return x;
 }
 

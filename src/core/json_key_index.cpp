@@ -1,6 +1,9 @@
 // Positions of the keys of a JSON text, so that a field's error can name its line and column.
 #include <cctype>
+#include <optional>
 #include <string>
+
+#include "stiffpath/core/error.hpp"
 
 #include "stiffpath/core/json_fields.hpp"
 
@@ -11,6 +14,13 @@ namespace {
 class KeyScanner {
  public:
   KeyScanner(std::string_view text, JsonKeyIndex& index) : text_(text), index_(index) {}
+
+  struct Duplicate {
+    std::string path;
+    int line, column;
+  };
+  //! The first key that appeared twice in one object, if any.
+  std::optional<Duplicate> duplicate_;
 
   void value(const std::string& path) {
     skip_space();
@@ -48,7 +58,9 @@ class KeyScanner {
       } catch (const nlohmann::json::exception&) {
       }
       const std::string child = path.empty() ? key : path + "." + key;
-      index_.emplace(child, std::make_pair(line, column));
+      if (!index_.emplace(child, std::make_pair(line, column)).second && !duplicate_) {
+        duplicate_ = Duplicate{child, line, column};
+      }
       skip_space();
       if (!at_end() && text_[pos_] == ':') advance();
       value(child);
@@ -114,6 +126,17 @@ class KeyScanner {
 JsonKeyIndex index_json_keys(std::string_view text) {
   JsonKeyIndex index;
   KeyScanner(text, index).value("");
+  return index;
+}
+
+JsonKeyIndex index_json_keys(std::string_view text, const std::string& label) {
+  JsonKeyIndex index;
+  KeyScanner scanner(text, index);
+  scanner.value("");
+  if (const auto& d = scanner.duplicate_) {
+    throw Error(SourceLocation{label, d->line, d->column},
+                "DUPLICATE: key '" + d->path + "' appears twice in one object (which one is meant is ambiguous)");
+  }
   return index;
 }
 

@@ -27,6 +27,7 @@ TaskSample to_task_sample(const motion::TrajectorySample& s) noexcept {
   t.acceleration_m_s2 = s.acceleration_m_s2;
   t.jerk_m_s3 = s.jerk_m_s3;
   t.laser_on = s.laser_on;
+  t.power = s.power;
   t.line = s.line;
   return t;
 }
@@ -71,11 +72,11 @@ void throw_refusal(const JointCommand& c, const compensation::Compensator& comp,
 
 JobSummary run_job(motion::SampleSource& source, const compensation::Compensator& compensator, JointWriter* writer,
                    const std::string& job_label, double rate_hz, AccelerationSource acceleration,
-                   const Progress& progress) {
+                   const Progress& progress, compensation::FilterChain* filters) {
   compensation::NumericDifferentiator numeric(rate_hz);
   bool draining = false;  // numeric: the source is exhausted, the differentiator hands out its last samples
   // The next sample to compensate, in order; false at the end.
-  const auto next_task = [&](TaskSample& out) -> bool {
+  const auto next_planned = [&](TaskSample& out) -> bool {
     if (acceleration == AccelerationSource::analytic) {
       const auto sample = source.next();
       if (sample) out = to_task_sample(*sample);
@@ -93,6 +94,21 @@ JobSummary run_job(motion::SampleSource& source, const compensation::Compensator
     const auto rest = numeric.drain();
     if (rest) out = *rest;
     return rest.has_value();
+  };
+  bool planned_done = false;  // filters: the planned samples are exhausted, the filters hand out their tails
+  const auto next_task = [&](TaskSample& out) -> bool {
+    if (!filters || filters->empty()) return next_planned(out);
+    if (!planned_done) {
+      TaskSample planned_sample;
+      if (next_planned(planned_sample)) {
+        out = *filters->push(planned_sample);
+        return true;
+      }
+      planned_done = true;
+    }
+    const auto tail = filters->drain();
+    if (tail) out = *tail;
+    return tail.has_value();
   };
 
   // This thread plans; compensation, checks and writing go through the two-thread pipeline. An

@@ -2,6 +2,8 @@
 #include "stiffpath/job/joint_writer.hpp"
 
 #include <array>
+#include <charconv>
+#include <fmt/format.h>
 #include <bit>
 #include <cmath>
 #include <algorithm>
@@ -22,32 +24,55 @@ OutputFormat parse_output_format(const std::string& text) {
 namespace {
 constexpr std::size_t kFlushBytes = 1 << 20;
 
+// Longest cell: a sign, the 309 integer digits of the largest double, the point, 9 decimals.
+constexpr std::size_t kMaxCellChars = 1 + 309 + 1 + 9;
+
+// `value` correctly rounded to `decimals` places after the point, as printf("%.*f") would write it,
+// except that a negative value that rounds to zero is written without its sign ("0.000", not "-0.000").
+char* put_fixed(char* p, double value, int decimals) noexcept {
+  char* end = std::to_chars(p, p + kMaxCellChars, value, std::chars_format::fixed, decimals).ptr;
+  if (std::signbit(value) && value > -1.0 && std::all_of(p + 1, end, [](char c) { return c == '0' || c == '.'; })) {
+    std::memmove(p, p + 1, static_cast<std::size_t>(end - p - 1));
+    --end;
+  }
+  return end;
+}
+
 // Rows are formatted straight into a fixed buffer that goes to the file whenever it passes kFlushBytes.
 class CsvWriter final : public JointWriter {
  public:
-  explicit CsvWriter(const std::string& path) : file_(path), buffer_(kFlushBytes + kMaxRowChars) {
-    const std::string header = std::string(kJointCsvHeader) + "\n";
+  CsvWriter(const std::string& path, double rate_hz, const JointFileRobot& robot)
+      : file_(path), buffer_(kFlushBytes + kMaxRowChars) {
+    const std::string header = fmt::format("{} rate_hz={} geometry_sha256={} robot={}\n{}\n", kJointCsvComment, rate_hz,
+                                           robot.geometry_sha256.empty() ? "-" : robot.geometry_sha256, robot.name,
+                                           kJointCsvHeader);
     file_.stream().write(header.data(), static_cast<std::streamsize>(header.size()));
   }
   void write(const JointCommand& c) override {
     char* p = buffer_.data() + used_;
-    p = write_fixed(p, c.t_s, 6);
+    p = put_fixed(p, c.t_s, kCsvTimeDecimals);
     for (double v : {c.q_rad.x(), c.q_rad.y(), c.qd_rad_s.x(), c.qd_rad_s.y()}) {
       *p++ = ',';
-      p = write_fixed(p, v, 9);
+      p = put_fixed(p, v, kCsvAngleDecimals);
+    }
+    for (double v : {c.qdd_rad_s2.x(), c.qdd_rad_s2.y()}) {
+      *p++ = ',';
+      p = put_fixed(p, v, kCsvAccelerationDecimals);
     }
     *p++ = ',';
     *p++ = c.laser_on ? '1' : '0';
+    *p++ = ',';
+    p = put_fixed(p, c.power, kCsvPowerDecimals);
     for (double v : {c.target_m.x(), c.target_m.y(), c.command_m.x(), c.command_m.y()}) {
       *p++ = ',';
-      p = write_fixed(p, v * 1e3, 6);
+      p = put_fixed(p, v * 1e3, kCsvMillimetreDecimals);
     }
     for (double v : {c.force_N.x(), c.force_N.y()}) {
       *p++ = ',';
-      p = write_fixed(p, v, 4);
+      p = put_fixed(p, v, kCsvForceDecimals);
     }
     *p++ = ',';
-    p = write_fixed(p, c.line, 0);
+    p = std::to_chars(p, p + 12, c.line).ptr;
     *p++ = '\n';
     used_ = static_cast<std::size_t>(p - buffer_.data());
     if (used_ >= kFlushBytes) flush();
@@ -58,7 +83,7 @@ class CsvWriter final : public JointWriter {
   }
 
  private:
-  static constexpr std::size_t kMaxRowChars = 13 * (kMaxFixedChars + 1) + 2;  // 13 cells, separators, laser
+  static constexpr std::size_t kMaxRowChars = 16 * (kMaxCellChars + 1) + 2;  // 16 cells, separators, newline
   void flush() {
     file_.stream().write(buffer_.data(), static_cast<std::streamsize>(used_));
     used_ = 0;
@@ -82,10 +107,10 @@ void put(char*& p, T value) {
 // Records are encoded straight into a fixed buffer of whole records that goes to the file when full.
 class BinaryWriter final : public JointWriter {
  public:
-  BinaryWriter(const std::string& path, double rate_hz, const std::string& mechanism)
-      : file_(path), buffer_(kBufferRecords * kBinaryRecordBytes), rate_hz_(rate_hz), mechanism_(mechanism) {
+  BinaryWriter(const std::string& path, double rate_hz, const JointFileRobot& robot)
+      : file_(path), buffer_(kBufferRecords * kBinaryRecordBytes), rate_hz_(rate_hz), robot_(robot) {
     std::array<char, kBinaryHeaderBytes> header{};
-    header_into(header, rate_hz, mechanism, 0);
+    header_into(header, rate_hz, robot, 0);
     file_.stream().write(header.data(), header.size());
   }
   void write(const JointCommand& c) override {
@@ -93,7 +118,7 @@ class BinaryWriter final : public JointWriter {
     char* p = buffer_.data() + used_;
     for (double v : {c.t_s, c.q_rad.x(), c.q_rad.y(), c.qd_rad_s.x(), c.qd_rad_s.y(), c.qdd_rad_s2.x(),
                      c.qdd_rad_s2.y(), c.target_m.x(), c.target_m.y(), c.command_m.x(), c.command_m.y(),
-                     c.force_N.x(), c.force_N.y()}) {
+                     c.force_N.x(), c.force_N.y(), c.power}) {
       put(p, v);
     }
     put(p, static_cast<std::int32_t>(c.line));
@@ -105,7 +130,7 @@ class BinaryWriter final : public JointWriter {
   void finish() override {
     flush();
     std::array<char, kBinaryHeaderBytes> header{};
-    header_into(header, rate_hz_, mechanism_, count_);
+    header_into(header, rate_hz_, robot_, count_);
     file_.stream().seekp(0);
     file_.stream().write(header.data(), header.size());
     file_.commit();
@@ -113,7 +138,7 @@ class BinaryWriter final : public JointWriter {
 
  private:
   static constexpr std::size_t kBufferRecords = kFlushBytes / kBinaryRecordBytes;
-  static void header_into(std::array<char, kBinaryHeaderBytes>& h, double rate_hz, const std::string& mechanism,
+  static void header_into(std::array<char, kBinaryHeaderBytes>& h, double rate_hz, const JointFileRobot& robot,
                           std::uint64_t count) {
     char* p = h.data();
     std::memcpy(p, kBinaryMagic, 8);
@@ -122,7 +147,9 @@ class BinaryWriter final : public JointWriter {
     put(p, kBinaryRecordBytes);
     put(p, rate_hz);
     put(p, count);
-    std::memcpy(p, mechanism.data(), std::min<std::size_t>(mechanism.size(), 31));
+    std::memcpy(p, robot.name.data(), std::min<std::size_t>(robot.name.size(), 31));
+    p += 32;
+    std::memcpy(p, robot.geometry_sha256.data(), std::min<std::size_t>(robot.geometry_sha256.size(), 64));
   }
   void flush() {
     file_.stream().write(buffer_.data(), static_cast<std::streamsize>(used_));
@@ -132,15 +159,19 @@ class BinaryWriter final : public JointWriter {
   std::vector<char> buffer_;
   std::size_t used_ = 0;
   double rate_hz_ = 0.0;
-  std::string mechanism_;
+  JointFileRobot robot_;
   std::uint64_t count_ = 0;
 };
 }  // namespace
 
 std::unique_ptr<JointWriter> make_joint_writer(OutputFormat format, const std::string& path, double rate_hz,
-                                               const std::string& mechanism) {
-  if (format == OutputFormat::csv) return std::make_unique<CsvWriter>(path);
-  return std::make_unique<BinaryWriter>(path, rate_hz, mechanism);
+                                               const JointFileRobot& robot) {
+  if (robot.name.size() > 31 || robot.name.find_first_of("\n\r") != std::string::npos) {
+    throw Error(fmt::format("robot name '{}' cannot be recorded in a joint file (one line of at most 31 bytes)",
+                            robot.name));
+  }
+  if (format == OutputFormat::csv) return std::make_unique<CsvWriter>(path, rate_hz, robot);
+  return std::make_unique<BinaryWriter>(path, rate_hz, robot);
 }
 
 }  // namespace stiffpath::job

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <set>
 #include <sstream>
@@ -53,6 +54,13 @@ std::vector<std::string> DisplacementTable::mechanisms() const {
 }
 
 namespace {
+// Bounds of a displacement table's cells (docs/reliability.md): a planar robot's workspace within 10 m,
+// load forces up to 100 kN, elastic displacements up to 100 mm and rotations up to 90 degrees.
+constexpr double max_coordinate_mm = 1e4;
+constexpr double max_force_N = 1e5;
+constexpr double max_displacement_mm = 100.0;
+constexpr double max_angle_deg = 90.0;
+
 ForceDirection parse_direction(const core::CsvReader& csv, std::size_t col) {
   const std::string_view text = csv.text(col);
   if (text == "+x" || text == "x") return ForceDirection::plus_x;
@@ -62,9 +70,16 @@ ForceDirection parse_direction(const core::CsvReader& csv, std::size_t col) {
   csv.fail(col, fmt::format("'{}' is not a force direction (+x, -x, +y, -y)", text));
 }
 
-std::optional<double> scaled(const core::CsvReader& csv, std::size_t col, double factor) {
-  const auto value = csv.optional_number(col);
-  return value ? std::optional<double>(*value * factor) : std::nullopt;
+// A cell within ±limit (in the file's units), refused with its location and value otherwise.
+double bounded(const core::CsvReader& csv, std::size_t col, double limit, const char* unit) {
+  const double value = csv.number(col);
+  if (std::abs(value) > limit) csv.fail(col, fmt::format("RANGE: {:g} is beyond ±{:g} {}", value, limit, unit));
+  return value;
+}
+
+std::optional<double> scaled(const core::CsvReader& csv, std::size_t col, double factor, double limit, const char* unit) {
+  if (csv.text(col).empty()) return std::nullopt;
+  return bounded(csv, col, limit, unit) * factor;
 }
 
 ReadingSpread read_spread(const core::CsvReader& csv, std::size_t c_readings) {
@@ -110,8 +125,8 @@ DisplacementTable read_table(core::CsvReader& csv, const std::string& source) {
     row.direction = parse_direction(csv, c_dir);
     row.point = std::string(csv.text(c_point));
     if (row.point.empty()) csv.fail(c_point, "value is missing (empty cell)");
-    row.x_m = units::mm_to_m(csv.number(c_x));
-    row.y_m = units::mm_to_m(csv.number(c_y));
+    row.x_m = units::mm_to_m(bounded(csv, c_x, max_coordinate_mm, "mm"));
+    row.y_m = units::mm_to_m(bounded(csv, c_y, max_coordinate_mm, "mm"));
     if (c_step) {
       const long step = csv.integer(*c_step);
       if (step < 1) csv.fail(*c_step, fmt::format("load step must be 1 or more (step 0 is the reference), got {}", step));
@@ -119,15 +134,16 @@ DisplacementTable read_table(core::CsvReader& csv, const std::string& source) {
     } else {
       row.step = ++series_steps[{row.mechanism, static_cast<int>(row.direction), row.point}];
     }
-    row.force_N = csv.number(c_fn);
+    row.force_N = bounded(csv, c_fn, max_force_N, "N");
     if (!(row.force_N > 0.0)) csv.fail(c_fn, fmt::format("force must be positive, got {}", row.force_N));
-    row.force_kgf = c_kgf ? csv.number(*c_kgf) : row.force_N / units::standard_gravity_m_s2;
-    row.nominal_force_N = c_nom ? csv.number(*c_nom) : row.force_N;
-    row.dx_m = scaled(csv, c_dx, 1e-3);
-    row.dy_m = scaled(csv, c_dy, 1e-3);
-    if (c_dz) row.dz_m = scaled(csv, *c_dz, 1e-3);
-    if (c_rx) row.rx_rad = scaled(csv, *c_rx, units::deg_to_rad(1.0));
-    if (c_ry) row.ry_rad = scaled(csv, *c_ry, units::deg_to_rad(1.0));
+    row.force_kgf = c_kgf ? bounded(csv, *c_kgf, max_force_N / units::standard_gravity_m_s2, "kgf")
+                          : row.force_N / units::standard_gravity_m_s2;
+    row.nominal_force_N = c_nom ? bounded(csv, *c_nom, max_force_N, "N") : row.force_N;
+    row.dx_m = scaled(csv, c_dx, 1e-3, max_displacement_mm, "mm");
+    row.dy_m = scaled(csv, c_dy, 1e-3, max_displacement_mm, "mm");
+    if (c_dz) row.dz_m = scaled(csv, *c_dz, 1e-3, max_displacement_mm, "mm");
+    if (c_rx) row.rx_rad = scaled(csv, *c_rx, units::deg_to_rad(1.0), max_angle_deg, "deg");
+    if (c_ry) row.ry_rad = scaled(csv, *c_ry, units::deg_to_rad(1.0), max_angle_deg, "deg");
     if (c_readings && !csv.text(*c_readings).empty()) row.spread = read_spread(csv, *c_readings);
     const auto key = std::make_tuple(row.mechanism, static_cast<int>(row.direction), row.point, row.step);
     if (!seen.insert(key).second) {

@@ -138,10 +138,7 @@ void GcodeInterpreter::set_offset(const GcodeBlock& b) {
   const GcodeWord* words[2] = {b.x, b.y};
   for (int k = 0; k < 2; ++k) {
     if (words[k] == nullptr) continue;
-    const double v = words[k]->value * scale_m_;
-    if (std::abs(v) > max_coordinate_m) {
-      b.fail(*words[k], fmt::format("coordinate beyond ±{:g} mm, the largest accepted", max_coordinate_mm));
-    }
+    const double v = coordinate_m(b, *words[k]);
     offset_m_[k] = (*position_m_)[k] - options_.work_offset_m[k] - v;
   }
 }
@@ -154,15 +151,20 @@ void GcodeInterpreter::require_start(const GcodeBlock& b, const GcodeWord& ancho
   }
 }
 
+double GcodeInterpreter::coordinate_m(const GcodeBlock& b, const GcodeWord& word) const {
+  const double v = word.value * scale_m_;
+  if (std::abs(v) > max_coordinate_m) {
+    b.fail(word, fmt::format("coordinate beyond ±{:g} mm, the largest accepted", max_coordinate_mm));
+  }
+  return v;
+}
+
 Vec2 GcodeInterpreter::target(const GcodeBlock& b) const {
   Vec2 p = position_m_.value_or(Vec2::Zero());
   const GcodeWord* words[2] = {b.x, b.y};
   for (int k = 0; k < 2; ++k) {
     if (words[k] == nullptr) continue;
-    const double v = words[k]->value * scale_m_;
-    if (std::abs(v) > max_coordinate_m) {
-      b.fail(*words[k], fmt::format("coordinate beyond ±{:g} mm, the largest accepted", max_coordinate_mm));
-    }
+    const double v = coordinate_m(b, *words[k]);
     p[k] = incremental_ ? p[k] + v : v + options_.work_offset_m[k] + offset_m_[k];
     if (std::abs(p[k]) > max_coordinate_m) {
       b.fail(*words[k], fmt::format("moves to {:g} mm in the robot frame, beyond ±{:g} mm, the largest accepted",

@@ -35,6 +35,8 @@ class GcodeInterpreter {
   void program_stop(const detail::GcodeBlock& block, std::deque<PathSegment>& out);
   void require_start(const detail::GcodeBlock& block, const GcodeWord& anchor) const;
   Vec2 target(const detail::GcodeBlock& block) const;
+  //! An X or Y word in m (units applied), refused beyond ±max_coordinate_mm at the word.
+  double coordinate_m(const detail::GcodeBlock& block, const GcodeWord& word) const;
   [[nodiscard]] double power_fraction() const noexcept;
   void emit(PathSegment segment, const detail::GcodeBlock& block, std::deque<PathSegment>& out);
   void warn(GcodeWarningKind kind, const detail::GcodeBlock& block, const std::string& message);

@@ -11,22 +11,67 @@ double turn_angle_rad(const Vec2& from, const Vec2& to) noexcept {
   return std::atan2(std::abs(cross), from.dot(to));
 }
 
+namespace {
+
+// Unit tangent at a segment's start or end without trigonometry: a line's chord, or an arc's radius
+// turned by ±90°.
+Vec2 tangent_at(const PathSegment& segment, bool at_end) noexcept {
+  if (segment.kind == SegmentKind::line && segment.length_m > 0.0) {
+    return (segment.end_m - segment.start_m) / segment.length_m;
+  }
+  if (segment.kind == SegmentKind::arc) {
+    const Vec2 radial = (at_end ? segment.end_m : segment.start_m) - segment.center_m;
+    const double r = radial.norm();
+    if (r > 0.0) return segment.sweep_rad >= 0.0 ? left_normal(radial / r) : Vec2(-left_normal(radial / r));
+  }
+  return at_end ? end_tangent(segment) : start_tangent(segment);
+}
+
+// The speed bound of a junction whose acceleration step may use `acceleration_step_m_s2` (≤ j·τ)
+// for its centripetal part. The velocity step per speed is |t₁ − t₀| = 2·sin(φ/2).
+double step_bounded_speed(const PathSegment& before, const SegmentLimits& before_limits, const PathSegment& after,
+                          const SegmentLimits& after_limits, const MotionLimits& limits, const JunctionRules& rules,
+                          const Vec2& t0, const Vec2& t1, double acceleration_step_m_s2) noexcept {
+  double v = std::min(before_limits.max_velocity_m_s, after_limits.max_velocity_m_s);
+  const double j = limits.max_jerk_m_s3, tau = rules.junction_time_s;
+  const double velocity_step_per_speed = (t1 - t0).norm();
+  if (velocity_step_per_speed > 0.0) v = std::min(v, j * tau * tau / velocity_step_per_speed);
+  const Vec2 k0 = curvature_1_m(before) * left_normal(t0), k1 = curvature_1_m(after) * left_normal(t1);
+  const double curvature_step = (k1 - k0).norm();
+  if (curvature_step > 0.0) v = std::min(v, std::sqrt(acceleration_step_m_s2 / curvature_step));
+  return std::max(v, 0.0);
+}
+
+// A turn by more than the corner angle φ_c: |t₁ − t₀| = 2·sin(φ/2) > 2·sin(φ_c/2). For the small
+// corner angles in use the series c − c³/24 + c⁵/1920 is exact to rounding (next term c⁷/322560).
+bool is_corner(const Vec2& t0, const Vec2& t1, const JunctionRules& rules) noexcept {
+  const double c = rules.corner_angle_rad, c2 = c * c;
+  const double chord = c <= 0.01 ? c * (1.0 - c2 / 24.0 * (1.0 - c2 / 80.0)) : 2.0 * std::sin(0.5 * c);
+  return (t1 - t0).norm() > chord;
+}
+
+}  // namespace
+
 double junction_speed_limit(const PathSegment& before, const SegmentLimits& before_limits, const PathSegment& after,
                             const SegmentLimits& after_limits, const MotionLimits& limits,
                             const JunctionRules& rules) noexcept {
   if (before.kind == SegmentKind::dwell || after.kind == SegmentKind::dwell) return 0.0;
-  const Vec2 t0 = end_tangent(before), t1 = start_tangent(after);
-  const double angle = turn_angle_rad(t0, t1);
-  if (angle > rules.corner_angle_rad && before.mode == JunctionMode::exact_stop) return 0.0;
+  const Vec2 t0 = tangent_at(before, true), t1 = tangent_at(after, false);
+  if (before.mode == JunctionMode::exact_stop && is_corner(t0, t1, rules)) return 0.0;
+  return step_bounded_speed(before, before_limits, after, after_limits, limits, rules, t0, t1,
+                            limits.max_jerk_m_s3 * rules.junction_time_s);
+}
 
-  double v = std::min(before_limits.max_velocity_m_s, after_limits.max_velocity_m_s);
-  const double j = limits.max_jerk_m_s3, tau = rules.junction_time_s;
-  const double velocity_step_per_speed = 2.0 * std::sin(0.5 * angle);
-  if (velocity_step_per_speed > 0.0) v = std::min(v, j * tau * tau / velocity_step_per_speed);
-  const Vec2 k0 = curvature_1_m(before) * left_normal(t0), k1 = curvature_1_m(after) * left_normal(t1);
-  const double curvature_step = (k1 - k0).norm();
-  if (curvature_step > 0.0) v = std::min(v, std::sqrt(j * tau / curvature_step));
-  return std::max(v, 0.0);
+double tangent_junction_speed_limit(const PathSegment& before, const SegmentLimits& before_limits,
+                                    const PathSegment& after, const SegmentLimits& after_limits,
+                                    const MotionLimits& limits, const JunctionRules& rules,
+                                    double tangential_acceleration_m_s2) noexcept {
+  if (before.kind == SegmentKind::dwell || after.kind == SegmentKind::dwell) return 0.0;
+  const Vec2 t0 = tangent_at(before, true), t1 = tangent_at(after, false);
+  if (is_corner(t0, t1, rules)) return 0.0;
+  const double budget = limits.max_jerk_m_s3 * rules.junction_time_s - tangential_acceleration_m_s2 * (t1 - t0).norm();
+  if (!(budget > 0.0)) return 0.0;
+  return step_bounded_speed(before, before_limits, after, after_limits, limits, rules, t0, t1, budget);
 }
 
 }  // namespace stiffpath::motion

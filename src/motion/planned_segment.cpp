@@ -7,10 +7,13 @@ namespace stiffpath::motion {
 
 TrajectorySample evaluate(const PlannedSegment& segment, double t_s) noexcept {
   // At or past the end time the end state exactly ((start + d) − start need not equal d).
-  const double local = t_s >= segment.end_time_s() ? segment.profile.duration_s
-                                                   : std::clamp(t_s - segment.start_time_s, 0.0, segment.profile.duration_s);
-  const ProfileState state = segment.profile.state_at(local);
-  const PathPoint point = point_at(segment.path, state.s_m);
+  const bool at_end = t_s >= segment.end_time_s();
+  const double local = at_end ? segment.duration_s : std::clamp(t_s - segment.start_time_s, 0.0, segment.duration_s);
+  const ProfileState state = segment.profile.state_at(segment.profile_offset_s + local);
+  const double s_m = at_end ? segment.path.length_m
+                     : local > 0.0 ? std::clamp(state.s_m - segment.profile_offset_m, 0.0, segment.path.length_m)
+                                   : 0.0;
+  const PathPoint point = point_at(segment.path, s_m);
   const Vec2& tangent = point.tangent;
   const Vec2 normal = left_normal(tangent);
   const double k = point.curvature_1_m, v = state.v_m_s, a = state.a_m_s2, j = state.j_m_s3;

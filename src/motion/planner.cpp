@@ -1,4 +1,4 @@
-// The look-ahead planner: a window of segments with incremental backward passes and a forward pass on release.
+// The look-ahead planner: runs of tangent segments in a window, batched backward passes, a forward pass on release.
 #include "stiffpath/motion/planner.hpp"
 
 #include <algorithm>
@@ -14,84 +14,182 @@ Planner::Planner(PathSource& source, const MotionLimits& limits, const PlannerOp
   validate(limits_);
 }
 
+// max_entry_speed with its first term, braking to rest, computed once per run.
 double Planner::entry_bound(const Node& node, double exit_max_m_s) const noexcept {
-  if (node.path.kind == SegmentKind::dwell) return 0.0;
-  return max_entry_speed(node.path.length_m, exit_max_m_s, node.limits.max_acceleration_m_s2,
-                         node.limits.max_jerk_m_s3);
+  if (node.dwell) return 0.0;
+  return std::max(node.reach_from_rest_m_s,
+                  reachable_speed(node.length_m, exit_max_m_s, node.limits.max_acceleration_m_s2, node.limits.max_jerk_m_s3));
 }
 
 double Planner::exit_max(std::size_t i) const noexcept {
   return i + 1 < window_.size() ? window_[i + 1].entry_max_m_s : 0.0;  // the unknown future: stop
 }
 
-void Planner::push(const PathSegment& segment) {
-  Node node{segment, segment_limits(segment, limits_), 0.0, 0.0};
-  const bool first = window_.empty() && statistics_.segments == 0;
-  if (!first) {
-    const Node& before = window_.back();
-    node.entry_limit_m_s = junction_speed_limit(before.path, before.limits, node.path, node.limits, limits_,
-                                                options_.junction);
+void Planner::add(const PathSegment& segment) {
+  const SegmentLimits limits = segment_limits(segment, limits_);
+  const double offset = open_ ? open_->length_m : 0.0;
+  if (open_ && options_.one_profile_per_run &&
+      extend_run(*open_, previous_, previous_limits_, segment, limits, limits_, options_.junction, options_.runs)) {
+    members_.push_back({segment, offset});
+  } else {
+    const double junction =
+        started_ ? junction_speed_limit(previous_, previous_limits_, segment, limits, limits_, options_.junction) : 0.0;
+    if (open_) close_run();
+    open_ = start_run(segment, limits, options_.runs);
+    open_entry_limit_m_s_ = junction;
+    members_.push_back({segment, 0.0});
   }
+  started_ = true;
+  previous_ = segment;
+  previous_limits_ = limits;
+  statistics_.peak_window = std::max(statistics_.peak_window, members_.size());
+}
+
+void Planner::close_run() {
+  const Run& run = *open_;
+  Node node;
+  node.members = run.segments;
+  node.length_m = run.length_m;
+  node.limits = run.low;
+  node.dwell = run.dwell;
+  node.dwell_s = run.dwell ? members_.back().path.dwell_s : 0.0;
+  node.line = members_[members_.size() - run.segments].path.line;
+  // The junction rules bound the speed by both adjacent segments' caps; a run keeps the lowest cap
+  // of its segments, so the junction also takes the caps of both runs.
+  node.entry_limit_m_s = std::min(open_entry_limit_m_s_, node.limits.max_velocity_m_s);
+  if (window_.size() + statistics_.runs > 0) node.entry_limit_m_s = std::min(node.entry_limit_m_s, last_cap_m_s_);
+  if (!node.dwell) {
+    node.reach_from_rest_m_s = reachable_speed(node.length_m, 0.0, node.limits.max_acceleration_m_s2, node.limits.max_jerk_m_s3);
+  }
+  last_cap_m_s_ = node.dwell ? 0.0 : node.limits.max_velocity_m_s;
+  // A run whose own junction rules bound its entry even if it had to stop at its end is pinned:
+  // pass now, so that the runs before it are released without waiting (each run is visited by at
+  // most one such pass, the one that releases it).
+  const bool pinned = node.entry_limit_m_s <= entry_bound(node, 0.0);
   window_.push_back(node);
-  // Backward pass from the new end: each entry may rise because its exit may now be faster than
-  // the stop assumed before. Entries only ever rise, so the pass ends at the first unchanged one.
+  open_.reset();
+  ++pending_;
+  if (pinned || pending_ > pass_depth_) backward_pass();
+}
+
+// Backward pass from the window's end: each entry may rise because its exit may now be faster than
+// the stop assumed before. Entries only ever rise, so the pass ends at the first earlier entry that
+// does not change. It runs once more new runs have arrived than the last pass changed earlier
+// ones: each pass's work on earlier runs (those it changes, and the one it stops at) is then paid
+// for by the runs that waited for the next pass; only the last two passes go unpaid. It also runs
+// when a pinned run arrives; the runs such a pass changes are final and never visited again. So a
+// whole program costs at most 4·runs + 2·(largest window + 1) entry evaluations. Waiting changes
+// nothing but when runs are released: the entries reach the same fixed point either way.
+void Planner::backward_pass() {
+  const std::size_t first_pending = window_.size() - pending_;
+  std::size_t changed = 0;
   for (std::size_t i = window_.size(); i-- > 0;) {
     Node& n = window_[i];
     const double braking = entry_bound(n, exit_max(i));
+    ++statistics_.entry_evaluations;
     const double entry = std::min(n.entry_limit_m_s, braking);
-    if (i + 1 < window_.size() && entry <= n.entry_max_m_s) break;
+    if (i < first_pending) {
+      if (entry <= n.entry_max_m_s) break;
+      ++changed;
+    }
     n.entry_max_m_s = entry;
     if (n.entry_limit_m_s <= braking) pinned_end_ = std::max(pinned_end_, front_index_ + i + 1);
   }
-  statistics_.peak_window = std::max(statistics_.peak_window, window_.size());
+  pending_ = 0;
+  pass_depth_ = changed;
 }
 
-PlannedSegment Planner::release() {
-  Node& node = window_.front();
-  // Forward pass: the exit is what the backward pass allows and what can be reached from the entry.
-  const bool dwell = node.path.kind == SegmentKind::dwell;
-  const double exit = dwell ? 0.0
-                            : max_exit_speed(node.path.length_m, entry_speed_m_s_, exit_max(0),
-                                             node.limits.max_acceleration_m_s2, node.limits.max_jerk_m_s3);
-  PlannedSegment planned;
-  planned.path = node.path;
-  planned.limits = node.limits;
-  planned.start_time_s = clock_s_;
-  planned.index = front_index_;
-  if (dwell) {
-    planned.profile.phase_s[3] = node.path.dwell_s;
-    planned.profile.duration_s = node.path.dwell_s;
+// Forward pass for the front run: its exit is what the backward pass allows and what can be reached
+// from its entry. Solves its profile; its segments are then handed out by emit().
+void Planner::begin_release() {
+  const Node node = window_.front();
+  const double exit = node.dwell ? 0.0
+                                 : max_exit_speed(node.length_m, entry_speed_m_s_, exit_max(0),
+                                                  node.limits.max_acceleration_m_s2, node.limits.max_jerk_m_s3);
+  Release release;
+  release.limits = node.limits;
+  release.members_left = node.members;
+  release.speed_m_s = entry_speed_m_s_;
+  if (node.dwell) {
+    release.profile.phase_s[3] = node.dwell_s;
+    release.profile.duration_s = node.dwell_s;
   } else {
-    const ProfileInput input{node.path.length_m,        entry_speed_m_s_,
-                             exit,                      node.limits.max_velocity_m_s,
+    const ProfileInput input{node.length_m, entry_speed_m_s_, exit, node.limits.max_velocity_m_s,
                              node.limits.max_acceleration_m_s2, node.limits.max_jerk_m_s3};
-    const ProfileStatus status = solve_profile(input, planned.profile);
+    const ProfileStatus status = solve_profile(input, release.profile);
     if (status != ProfileStatus::ok) {
       throw std::logic_error(fmt::format("internal planner error at G-code line {}: profile from {} to {} m/s over {} m: {}",
-                              node.path.line, entry_speed_m_s_, exit, node.path.length_m, describe(status)));
+                                         node.line, entry_speed_m_s_, exit, node.length_m, describe(status)));
     }
   }
-  clock_s_ += planned.profile.duration_s;
+  release.cruise_start_s = release.profile.phase_s[0] + release.profile.phase_s[1] + release.profile.phase_s[2];
+  release.cruise_start_m = release.profile.state_at(release.cruise_start_s).s_m;
+  release_ = release;
   entry_speed_m_s_ = exit;
   window_.pop_front();
   ++front_index_;
+  ++statistics_.runs;
+}
+
+// The next segment of the run being released: its share of the run's profile, from where the
+// previous one ended to where the profile has covered its end.
+PlannedSegment Planner::emit() {
+  Release& r = *release_;
+  const Member member = members_.front();
+  members_.pop_front();
+  const bool last = --r.members_left == 0;
+  // Where the profile has covered the segment's end: in the cruise phase directly, else time_at.
+  const Profile& p = r.profile;
+  const double into_cruise_m = member.offset_m + member.path.length_m - r.cruise_start_m;
+  const bool cruising = !last && p.peak_velocity_m_s > 0.0 && into_cruise_m >= 0.0 &&
+                        into_cruise_m <= p.peak_velocity_m_s * p.phase_s[3];
+  const double end_s = last        ? p.duration_s
+                       : cruising ? std::min(r.cruise_start_s + into_cruise_m / p.peak_velocity_m_s, p.duration_s)
+                                  : p.time_at(member.offset_m + member.path.length_m);
+  PlannedSegment planned;
+  planned.path = member.path;
+  planned.limits = r.limits;
+  planned.profile = r.profile;
+  planned.start_time_s = clock_s_;
+  planned.duration_s = std::max(end_s - r.profile_time_s, 0.0);
+  planned.profile_offset_s = r.profile_time_s;
+  planned.profile_offset_m = member.offset_m;
+  planned.entry_speed_m_s = r.speed_m_s;
+  planned.exit_speed_m_s = last ? p.end_velocity_m_s : cruising ? p.peak_velocity_m_s : p.state_at(end_s).v_m_s;
+  planned.index = statistics_.segments;
+  clock_s_ += planned.duration_s;
+  r.profile_time_s = end_s;
+  r.speed_m_s = planned.exit_speed_m_s;
   ++statistics_.segments;
+  if (last) release_.reset();
   return planned;
 }
 
 std::optional<PlannedSegment> Planner::next() {
   for (;;) {
-    if (!window_.empty() && (exhausted_ || pinned_end_ > front_index_ + 1)) return release();
+    if (release_) return emit();
+    if (!window_.empty() && (exhausted_ || pinned_end_ > front_index_ + 1)) {
+      begin_release();
+      continue;
+    }
     if (exhausted_) return std::nullopt;
-    if (options_.max_lookahead_segments > 0 && window_.size() >= std::max<std::size_t>(options_.max_lookahead_segments, 2)) {
-      ++statistics_.forced_releases;
-      return release();
+    if (options_.max_lookahead_segments > 0 && members_.size() >= std::max<std::size_t>(options_.max_lookahead_segments, 2)) {
+      if (open_) close_run();
+      if (pending_ > 0) {
+        backward_pass();
+        continue;
+      }
+      statistics_.forced_releases += window_.front().members;
+      begin_release();
+      continue;
     }
     std::optional<PathSegment> segment = source_.next();
     if (!segment) {
       exhausted_ = true;
+      if (open_) close_run();
+      if (pending_ > 0) backward_pass();
     } else if (segment->kind == SegmentKind::dwell || segment->length_m > 0.0) {
-      push(*segment);
+      add(*segment);
     }
   }
 }

@@ -1,6 +1,9 @@
 // Evaluation of a 7-phase jerk-limited profile: the speed-up half forwards, the slow-down half backwards from the end.
 #include "stiffpath/motion/profile.hpp"
 
+#include <cmath>
+#include <limits>
+
 #include "profile_cases.hpp"
 
 namespace stiffpath::motion {
@@ -62,6 +65,37 @@ ProfileState Profile::state_at(double t_s) const noexcept {
   const ProfileState back = detail::speed_up_state(end_velocity_m_s, phase_s[6], phase_s[5], jerk_m_s3,
                                                    duration_s - t_s);
   return {length_m - back.s_m, back.v_m_s, -back.a_m_s2, back.j_m_s3};
+}
+
+double Profile::time_at(double s_m) const noexcept {
+  if (!(s_m > 0.0)) return 0.0;
+  if (s_m >= length_m) return duration_s;
+  // In the cruise phase s is linear in t: the time follows directly.
+  const double cruise_start_s = phase_s[0] + phase_s[1] + phase_s[2];
+  if (phase_s[3] > 0.0 && peak_velocity_m_s > 0.0) {
+    const double cruise_start_m = state_at(cruise_start_s).s_m;
+    const double into_m = s_m - cruise_start_m;
+    if (into_m >= 0.0 && into_m <= peak_velocity_m_s * phase_s[3]) {
+      return std::min(cruise_start_s + into_m / peak_velocity_m_s, duration_s);
+    }
+  }
+  double lo = 0.0, hi = duration_s, t = duration_s * (s_m / length_m);
+  double step = hi - lo, previous_step = step;
+  for (int iteration = 0; iteration < 200; ++iteration) {
+    const ProfileState state = state_at(t);
+    const double error = state.s_m - s_m;
+    if (error == 0.0) return t;
+    (error < 0.0 ? lo : hi) = t;
+    // Newton while it stays in the bracket and at least halves the step every other iteration
+    // (from rest s grows like t³ and Newton creeps); bisection otherwise.
+    const double newton = state.v_m_s > 0.0 ? t - error / state.v_m_s : lo - 1.0;
+    const bool use_newton = newton > lo && newton < hi && std::abs(2.0 * error) <= std::abs(previous_step * state.v_m_s);
+    previous_step = step;
+    step = use_newton ? t - newton : 0.5 * (hi - lo);
+    t = use_newton ? newton : lo + step;
+    if (std::abs(step) <= 4.0 * std::numeric_limits<double>::epsilon() * hi) break;
+  }
+  return t;
 }
 
 }  // namespace stiffpath::motion

@@ -13,8 +13,12 @@ SegmentLimits segment_limits(const PathSegment& segment, const MotionLimits& lim
   const double kappa = std::abs(curvature_1_m(segment));
   if (segment.kind != SegmentKind::arc || kappa <= 0.0) return out;
 
-  const double v = std::min({out.max_velocity_m_s, std::sqrt(arc_centripetal_acceleration_share * a / kappa),
-                             std::cbrt(arc_centripetal_jerk_share * j / (kappa * kappa))});
+  // min(F, sqrt(0.7a/κ), cbrt(0.3j/κ²)), taking the roots only where they may be below the cap.
+  double v = out.max_velocity_m_s;
+  const double acceleration_bound = arc_centripetal_acceleration_share * a / kappa;
+  if (acceleration_bound < v * v) v = std::sqrt(acceleration_bound);
+  const double jerk_bound = arc_centripetal_jerk_share * j / (kappa * kappa);
+  if (jerk_bound < v * v * v) v = std::min(v, std::cbrt(jerk_bound));
   const double centripetal = v * v * kappa;
   double a_t = std::sqrt(std::max(a * a - centripetal * centripetal, 0.0));
   a_t = std::min(a_t, arc_normal_jerk_share * j / (3.0 * v * kappa));

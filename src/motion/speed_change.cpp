@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace stiffpath::motion {
 
@@ -27,19 +28,24 @@ SpeedChange speed_change(double v_from_m_s, double v_to_m_s, double max_accelera
 
 namespace {
 
-// Positive root of j·u³ + 2·v0·u − L = 0, u = sqrt(Δv/j): the triangle's distance (2·v0 + Δv)·u = L.
-double triangle_ramp_time(double length_m, double v0, double j) noexcept {
+// Positive root of j·u³ + 2·v0·u − L = 0, u = sqrt(Δv/j): the triangle's distance (2·v0 + Δv)·u = L,
+// for a root known to be at most u_max. u³ + p·u − q is increasing and convex for u > 0, and each of
+// q/p, cbrt(q) and u_max lies above its root: Halley's method from the least of them converges onto
+// it cubically (three or four steps). q/p is the better start when p·u outweighs u³ there; then the
+// cube root is not needed.
+double triangle_ramp_time(double length_m, double v0, double j, double u_max) noexcept {
   const double p = 2.0 * v0 / j, q = length_m / j;  // u³ + p·u − q = 0
-  double u = 0.0;
-  if (p <= 0.0) {
-    u = std::cbrt(q);
-  } else {
-    // Trigonometric (hyperbolic) form of Cardano's root for one real root; no cancellation.
-    const double k = std::sqrt(p / 3.0);
-    u = 2.0 * k * std::sinh(std::asinh(1.5 * q / (p * k)) / 3.0);
+  const double linear = p > 0.0 ? q / p : u_max;
+  double u = linear * linear < p ? std::min(linear, u_max) : std::min({std::cbrt(q), linear, u_max});
+  for (int iteration = 0; iteration < 50; ++iteration) {
+    const double f = (u * u + p) * u - q;
+    const double slope = 3.0 * u * u + p, curvature = 6.0 * u;
+    const double denominator = 2.0 * slope * slope - f * curvature;
+    if (f == 0.0 || !(denominator > 0.0)) break;
+    const double step = 2.0 * f * slope / denominator;
+    u -= step;
+    if (!(std::abs(step) > 4.0 * std::numeric_limits<double>::epsilon() * u)) break;
   }
-  const double f = (u * u + p) * u - q, df = 3.0 * u * u + p;  // one Newton step polishes rounding
-  if (df > 0.0) u -= f / df;
   return std::max(u, 0.0);
 }
 
@@ -49,9 +55,11 @@ double reachable_speed(double length_m, double v_from_m_s, double max_accelerati
                        double max_jerk_m_s3) noexcept {
   if (!(length_m > 0.0)) return v_from_m_s;
   const double a = max_acceleration_m_s2, j = max_jerk_m_s3, v0 = v_from_m_s;
-  const double u = triangle_ramp_time(length_m, v0, j);
-  const double dv_triangle = j * u * u;
-  if (dv_triangle * j <= a * a) return v0 + dv_triangle;
+  const double ramp_at_limit = a / j;  // the longest triangle: Δv = a²/j over (2·v0 + a²/j)·a/j
+  if (length_m <= (2.0 * v0 + a * ramp_at_limit) * ramp_at_limit) {
+    const double u = triangle_ramp_time(length_m, v0, j, ramp_at_limit);
+    return v0 + j * u * u;
+  }
   // Trapezoid: (v0 + Δv/2)(Δv/a + a/j) = L  ⇔  Δv² + (2·v0 + a²/j)·Δv + 2a·(v0·a/j − L) = 0.
   const double b = 2.0 * v0 + a * a / j;
   const double c = 2.0 * a * (v0 * a / j - length_m);  // < 0 here, since the triangle did not fit

@@ -38,12 +38,12 @@ std::vector<std::string> write_experiment_figures(const std::filesystem::path& d
     int column;
   };
   const std::vector<Panel> panels{
-      {"fig_4_9a_y_length", "y", "length (mm)", "y motion: measured length (cf. fig. 4.9a)", 2},
-      {"fig_4_9b_y_deviation", "y", "deviation area (mm^2)", "y motion: deviation from linearity (cf. fig. 4.9b)", 3},
-      {"fig_4_10a_x_length", "x", "length (mm)", "x motion: measured length (cf. fig. 4.10a)", 2},
-      {"fig_4_10b_x_deviation", "x", "deviation area (mm^2)", "x motion: deviation from linearity (cf. fig. 4.10b)", 3},
+      {"fig_4_9a_y_length", "y", "length (mm)", "simulated y motion: measured length (cf. fig. 4.9a)", 2},
+      {"fig_4_9b_y_deviation", "y", "deviation area (mm^2)", "simulated y motion: deviation from linearity (cf. fig. 4.9b)", 3},
+      {"fig_4_10a_x_length", "x", "length (mm)", "simulated x motion: measured length (cf. fig. 4.10a)", 2},
+      {"fig_4_10b_x_deviation", "x", "deviation area (mm^2)", "simulated x motion: deviation from linearity (cf. fig. 4.10b)", 3},
       {"fig_4_11_triangle_deviation", "triangle", "total deviation area (mm^2)",
-       "triangle: deviation from linearity (cf. fig. 4.11)", 3},
+       "simulated triangle: deviation from linearity (cf. fig. 4.11)", 3},
   };
   std::vector<std::string> rendered;
   for (const auto& panel : panels) {

@@ -2,6 +2,7 @@
 #include "stiffpath/simulation/experiment.hpp"
 
 #include <fmt/format.h>
+#include <algorithm>
 #include <map>
 #include <sstream>
 
@@ -9,6 +10,8 @@
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/core/units.hpp"
 #include "stiffpath/motion/trajectory_stream.hpp"
+#include "stiffpath/simulation/cg_lever.hpp"
+#include "stiffpath/simulation/compensator_factory.hpp"
 
 namespace stiffpath::simulation {
 
@@ -16,13 +19,8 @@ namespace {
 // The rectangle of the robot's measurement points (its table's rows), m.
 compliance::GridBounds measured_region(const kinematics::Robot& robot) {
   const auto table = compliance::robot_table(robot);
-  compliance::GridBounds b{1e300, -1e300, 1e300, -1e300};
-  for (const auto& r : table.rows) {
-    b.x_min = std::min(b.x_min, r.x_m);
-    b.x_max = std::max(b.x_max, r.x_m);
-    b.y_min = std::min(b.y_min, r.y_m);
-    b.y_max = std::max(b.y_max, r.y_m);
-  }
+  auto b = compliance::GridBounds::none();
+  for (const auto& r : table.rows) b.include({r.x_m, r.y_m});
   if (!(b.x_max > b.x_min) || !(b.y_max > b.y_min)) {
     throw Error(SourceLocation{table.source}, "the measurement points must spread over x and y to place test motions");
   }
@@ -39,8 +37,27 @@ std::string data_key(const kinematics::Robot& r) {
 TwinModels make_twin_models(const kinematics::Robot& robot, const ExperimentOptions& options) {
   TwinModels models;
   models.truth = make_true_compliance(robot, options.truth);
+  const auto wants = [&](const char* v) {
+    return std::find(options.variants.begin(), options.variants.end(), v) != options.variants.end();
+  };
+  for (const auto& v : options.variants) (void)parse_compensation_variant(v);
   models.compensation = fit_compensation_model(*models.truth, robot, options.fit);
-  if (!options.motions.empty()) models.motions = test_motions(measured_region(robot), robot);
+  if (wants("default")) {
+    CampaignFitOptions fit = options.fit;
+    fit.method = compensation_fit_method(CompensationVariant::default_run);
+    models.compensation_default = fit_compensation_model(*models.truth, robot, fit);
+  }
+  if (!options.motions.empty()) {
+    std::vector<double> xs, ys;  // the distinct coordinates of the measurement points: the grid lines
+    for (const auto& r : compliance::robot_table(robot).rows) {
+      auto add = [](std::vector<double>& v, double c) {
+        if (std::none_of(v.begin(), v.end(), [c](double e) { return std::abs(e - c) < 1e-6; })) v.push_back(c);
+      };
+      add(xs, r.x_m);
+      add(ys, r.y_m);
+    }
+    models.motions = test_motions(measured_region(robot), robot, xs, ys);
+  }
   for (const auto& path : options.paths) models.motions.push_back(path);
   return models;
 }
@@ -56,7 +73,16 @@ RunResult run_once(const RunSpec& spec, const kinematics::Robot& robot, const Tw
   motion::TrajectoryStream stream(program, motion.label, plan);
   compensation::CompensatorOptions copts = options.compensator;
   copts.enabled = spec.compensated;
-  const compensation::Compensator compensator(robot, models.compensation, copts);
+  const CompensationVariant variant = parse_compensation_variant(spec.variant);
+  const bool default_variant = spec.compensated && variant == CompensationVariant::default_run;
+  if (default_variant && !models.compensation_default) throw Error("the default variant's model was not made");
+  SimulationOptions sim_options = options.simulation;
+  if (options.cg_lever && !sim_options.cg_lever) sim_options.cg_lever = make_cg_lever(robot);
+  const auto model = options.oracle_model ? make_loaded_compliance(models.truth, sim_options.cg_lever)
+                     : default_variant    ? models.compensation_default
+                                          : models.compensation;
+  const auto owned = make_compensator(robot, model, variant, copts);
+  const compensation::Compensator& compensator = *owned;
   JointSource source = [&]() -> std::optional<compensation::JointCommand> {
     const auto sample = stream.next();
     if (!sample) return std::nullopt;
@@ -64,7 +90,7 @@ RunResult run_once(const RunSpec& spec, const kinematics::Robot& robot, const Tw
     if (c.status != compensation::Status::ok) job::throw_refusal(c, compensator, motion.label);
     return c;
   };
-  const SimulationResult sim = simulate(source, robot, models.truth, options.simulation);
+  const SimulationResult sim = simulate(source, robot, models.truth, sim_options);
   RunResult out;
   out.spec = spec;
   out.rows = robot.compliance.rows;
@@ -84,10 +110,12 @@ std::vector<RunResult> run_experiment(const ExperimentOptions& options) {
     const TwinModels& twin = models.at(key);
     std::vector<std::string> motions = options.motions;
     for (const auto& path : options.paths) motions.push_back(path.name);
-    for (bool compensated : {false, true}) {
+    std::vector<std::pair<bool, std::string>> configs{{false, "thesis"}};
+    for (const auto& v : options.variants) configs.emplace_back(true, v);
+    for (const auto& [compensated, variant] : configs) {
       for (const auto& motion : motions) {
         for (double g : options.accelerations_g) {
-          results.push_back(run_once({robot.name, motion, g, compensated}, robot, twin, options));
+          results.push_back(run_once({robot.name, motion, g, compensated, variant}, robot, twin, options));
         }
       }
     }
@@ -106,15 +134,16 @@ std::string experiment_csv(const std::vector<RunResult>& results) {
   std::string out =
       "robot,rows,cg,compensated,motion,acceleration_g,duration_s,length_mm,commanded_length_mm,"
       "length_error_mm,deviation_area_mm2,max_deviation_mm,path_accuracy_mm,cornering_round_off_mm,"
-      "cornering_overshoot_mm,residual_vibration_mm,peak_deflection_mm\n";
+      "cornering_overshoot_mm,residual_vibration_mm,peak_deflection_mm,variant\n";
   for (const auto& r : results) {
     const auto& m = r.metrics;
-    out += fmt::format("{},{},{},{},{},{:g},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{},{},{:.6f},{:.6f}\n",
+    out += fmt::format("{},{},{},{},{},{:g},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{},{},{:.6f},{:.6f},{}\n",
                        r.spec.robot, r.rows, r.cg_label, r.spec.compensated ? 1 : 0, r.spec.motion,
                        r.spec.acceleration_g, r.duration_s, m.length_m * 1e3, m.commanded_length_m * 1e3,
                        m.length_error_m * 1e3, m.deviation_area_m2 * 1e6, m.max_deviation_m * 1e3,
                        m.path_accuracy_m * 1e3, optional_mm(m, m.cornering_round_off_m),
-                       optional_mm(m, m.cornering_overshoot_m), m.residual_vibration_m * 1e3, m.peak_deflection_m * 1e3);
+                       optional_mm(m, m.cornering_overshoot_m), m.residual_vibration_m * 1e3, m.peak_deflection_m * 1e3,
+                       r.spec.compensated ? r.spec.variant : std::string());
   }
   return out;
 }

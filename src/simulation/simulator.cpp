@@ -36,13 +36,19 @@ void check_finite(const Plant& plant, double t) {
 }  // namespace
 
 SimulationResult simulate(const JointSource& source, const kinematics::Robot& robot_spec,
-                          std::shared_ptr<const compliance::Model> truth, const SimulationOptions& options) {
+                          std::shared_ptr<const compliance::Model> truth, const SimulationOptions& options,
+                          const StrokeSink& on_stroke) {
+  if (!(options.mass_scale > 0.0 && options.mass_scale < 10.0)) {
+    throw Error(fmt::format("simulation: mass_scale {} outside (0, 10)", options.mass_scale));
+  }
   if (!(options.settle_s >= 0.0) || !(options.mark_rate_hz > 0.0)) {
     throw Error(fmt::format("simulation: settle_s {} must be ≥ 0 and mark_rate_hz {} > 0", options.settle_s,
                             options.mark_rate_hz));
   }
   const kinematics::FiveBar robot = robot_spec.five_bar();
-  Plant plant(robot, std::move(truth), robot_spec.moving_mass_kg, options.plant);
+  PlantOptions plant_options = options.plant;
+  if (plant_options.controller_mass_kg == 0.0) plant_options.controller_mass_kg = robot_spec.moving_mass_kg;
+  Plant plant(robot, std::move(truth), robot_spec.moving_mass_kg * options.mass_scale, plant_options, options.cg_lever);
   SimulationResult out;
   auto first = source();
   if (!first) throw Error("simulation: the joint trajectory is empty");
@@ -56,11 +62,27 @@ SimulationResult simulate(const JointSource& source, const kinematics::Robot& ro
   auto deflection = [&] { return (plant.state().tip_m - plant.base()).norm(); };
   compensation::JointCommand a = *first;
   const double t0 = a.t_s;
-  if (a.laser_on) out.marked.push_back(plant.state().tip_m);
+  Stroke stroke;  // the stroke being marked; its buffers are reused from one stroke to the next
+  const auto end_stroke = [&](const Vec2& last_target, double t_s) {
+    stroke.commanded.push_back(last_target);
+    stroke.end_s = t_s;
+    if (on_stroke) on_stroke(stroke);
+    ++out.strokes;
+    stroke.index = out.strokes;
+    stroke.marked.clear();
+    stroke.commanded.clear();
+  };
+  if (a.laser_on) {
+    stroke.start_s = a.t_s;
+    stroke.marked.push_back(plant.state().tip_m);
+  }
   for (auto b = source(); b; b = source()) {
     const double h = b->t_s - a.t_s;
     if (!(h > 0.0)) throw Error(fmt::format("simulation: time does not increase at t = {} s", b->t_s));
-    if (a.laser_on) out.commanded.push_back(a.target_m);
+    if (a.laser_on) {
+      if (stroke.commanded.empty()) stroke.start_s = a.t_s;
+      stroke.commanded.push_back(a.target_m);
+    }
     const int n = std::max(1, static_cast<int>(std::ceil(h * rate - 1e-9)));
     for (int i = 1; i <= n; ++i) {
       // The servo law sees the reference at the start of the step, where its state is (a symplectic
@@ -71,13 +93,16 @@ SimulationResult simulate(const JointSource& source, const kinematics::Robot& ro
       out.peak_deflection_m = std::max(out.peak_deflection_m, deflection());
       out.peak_tracking_error_m =
           std::max(out.peak_tracking_error_m, (plant.base() - robot.forward(r.q_rad)).norm());
-      if (a.laser_on && out.steps % mark_every == 0) out.marked.push_back(plant.state().tip_m);
+      if (a.laser_on && out.steps % mark_every == 0) stroke.marked.push_back(plant.state().tip_m);
     }
     check_finite(plant, b->t_s);
-    if (a.laser_on && !b->laser_on) out.commanded.push_back(b->target_m);
+    if (a.laser_on && !b->laser_on) end_stroke(b->target_m, b->t_s);
     a = *b;
   }
-  if (a.laser_on) out.commanded.push_back(a.target_m);
+  if (a.laser_on) {
+    if (stroke.commanded.empty()) stroke.start_s = a.t_s;
+    end_stroke(a.target_m, a.t_s);
+  }
   out.duration_s = a.t_s - t0;
   // Hold the last command and watch the tip ring down.
   const JointReference hold{a.q_rad, Vec2::Zero(), Vec2::Zero()};
@@ -88,6 +113,18 @@ SimulationResult simulate(const JointSource& source, const kinematics::Robot& ro
     out.residual_vibration_m = std::max(out.residual_vibration_m, deflection());
   }
   check_finite(plant, a.t_s + options.settle_s);
+  return out;
+}
+
+SimulationResult simulate(const JointSource& source, const kinematics::Robot& robot,
+                          std::shared_ptr<const compliance::Model> truth, const SimulationOptions& options) {
+  std::vector<Vec2> marked, commanded;
+  SimulationResult out = simulate(source, robot, std::move(truth), options, [&](const Stroke& s) {
+    marked.insert(marked.end(), s.marked.begin(), s.marked.end());
+    commanded.insert(commanded.end(), s.commanded.begin(), s.commanded.end());
+  });
+  out.marked = std::move(marked);
+  out.commanded = std::move(commanded);
   return out;
 }
 

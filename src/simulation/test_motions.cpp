@@ -1,4 +1,5 @@
 // The test motions of fig. 4.7 placed and scaled inside a robot's measured rectangle, and users' own paths.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
@@ -48,10 +49,16 @@ std::string program(const std::vector<Vec2>& v) {
 }
 }  // namespace
 
-std::vector<TestMotion> test_motions(const compliance::GridBounds& g, const kinematics::Robot& robot) {
+std::vector<TestMotion> test_motions(const compliance::GridBounds& g, const kinematics::Robot& robot,
+                                     const std::vector<double>& grid_x, const std::vector<double>& grid_y) {
   const double w = g.x_max - g.x_min, h = g.y_max - g.y_min;
   const Vec2 c{0.5 * (g.x_min + g.x_max), 0.5 * (g.y_min + g.y_max)};
-  const std::vector<std::pair<std::string, std::vector<Vec2>>> shapes{
+  std::vector<double> xs = grid_x, ys = grid_y;
+  if (xs.size() < 2) xs = {g.x_min, c.x(), g.x_max};
+  if (ys.size() < 2) ys = {g.y_min, c.y(), g.y_max};
+  std::sort(xs.begin(), xs.end());
+  std::sort(ys.begin(), ys.end());
+  std::vector<std::pair<std::string, std::vector<Vec2>>> shapes{
       {"x", {{g.x_min, c.y()}, {g.x_max, c.y()}}},
       {"y", {{c.x(), g.y_min}, {c.x(), g.y_max}}},
       {"triangle",
@@ -60,6 +67,26 @@ std::vector<TestMotion> test_motions(const compliance::GridBounds& g, const kine
         {c.x(), g.y_max - 0.1 * h},
         {g.x_min + 0.15 * w, g.y_min + 0.1 * h}}},
   };
+  for (std::size_t k = 0; k + 1 < xs.size(); ++k) {
+    const double x = 0.5 * (xs[k] + xs[k + 1]);
+    shapes.push_back({fmt::format("y-mid-{}", k + 1), {{x, g.y_min}, {x, g.y_max}}});
+  }
+  {
+    std::size_t k = 0;  // the row nearest the middle, and the next one up
+    for (std::size_t i = 0; i < ys.size(); ++i) {
+      if (std::abs(ys[i] - c.y()) < std::abs(ys[k] - c.y())) k = i;
+    }
+    if (k + 1 >= ys.size()) k = ys.size() - 2;
+    const double y = 0.5 * (ys[k] + ys[k + 1]);
+    shapes.push_back({"x-mid", {{g.x_min, y}, {g.x_max, y}}});
+  }
+  {
+    // A quarter cell, at most 7.5 % of the width and 5 % of the height (the triangle keeps 15 % and 10 % free).
+    const Vec2 shift(std::min(0.25 * (xs[1] - xs[0]), 0.075 * w), std::min(0.25 * (ys[1] - ys[0]), 0.05 * h));
+    std::vector<Vec2> v = shapes[2].second;
+    for (auto& p : v) p += shift;
+    shapes.push_back({"triangle-off", v});
+  }
   std::vector<TestMotion> motions;
   for (const auto& [name, vertices] : shapes) {
     bool placed = false;
@@ -67,7 +94,7 @@ std::vector<TestMotion> test_motions(const compliance::GridBounds& g, const kine
       std::vector<Vec2> v;
       for (const Vec2& p : vertices) v.push_back(c + (p - c) * (tenth / 10.0));
       if (!reachable(v, robot)) continue;
-      motions.push_back({name, program(v), name == "triangle" ? 3 : 1, name + "_motion"});
+      motions.push_back({name, program(v), name.rfind("triangle", 0) == 0 ? 3 : 1, name + "_motion"});
       placed = true;
     }
     if (!placed) {

@@ -8,6 +8,7 @@
 #include "stiffpath/compliance/model_factory.hpp"
 #include "stiffpath/compliance/model_file.hpp"
 #include "stiffpath/core/error.hpp"
+#include "stiffpath/simulation/structural_compliance.hpp"
 #include "stiffpath/simulation/twin_models.hpp"
 
 namespace stiffpath::simulation {
@@ -64,17 +65,21 @@ class PerturbedModel final : public compliance::Model {
 
 }  // namespace
 
-std::shared_ptr<const compliance::Model> make_true_compliance(const kinematics::Robot& robot,
-                                                              const TrueComplianceOptions& options) {
-  if (!(options.perturbation >= 0.0 && options.perturbation <= 0.5)) {
-    throw Error(fmt::format("perturbation {} outside [0, 0.5]", options.perturbation));
-  }
+std::shared_ptr<const compliance::Model> make_true_base(const kinematics::Robot& robot,
+                                                        const TrueComplianceOptions& options) {
+  if (options.base) return options.base;
   std::shared_ptr<compliance::Model> base;
   if (!options.base_model.empty()) {
     compliance::LoadedModel m = compliance::load_model(options.base_model);
     compliance::check_model_geometry(m, robot, false);
     base = std::move(m.model);
   } else if (!robot.compliance.table.empty()) {
+    if (options.family == "structural") {
+      return fit_structural_model(robot, compliance::robot_table(robot));
+    }
+    if (options.family != "physical") {
+      throw Error(fmt::format("unknown C_true family '{}' (known: structural, physical)", options.family));
+    }
     base = compliance::fit_model(measurement::load_displacement_table(robot.compliance.table), robot.compliance.rows,
                                  "physical", compliance::ForceConvention::measured, robot)
                .model;
@@ -89,6 +94,15 @@ std::shared_ptr<const compliance::Model> make_true_compliance(const kinematics::
   }
   // The plant must follow the physics beyond the measured rectangle, not freeze it.
   base->set_outside_policy(compliance::OutsidePolicy::extrapolate);
+  return base;
+}
+
+std::shared_ptr<const compliance::Model> make_true_compliance(const kinematics::Robot& robot,
+                                                              const TrueComplianceOptions& options) {
+  if (!(options.perturbation >= 0.0 && options.perturbation <= 0.5)) {
+    throw Error(fmt::format("perturbation {} outside [0, 0.5]", options.perturbation));
+  }
+  std::shared_ptr<const compliance::Model> base = make_true_base(robot, options);
   std::mt19937_64 rng(options.seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   ScaleField sx, sy;

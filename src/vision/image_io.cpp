@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
 #include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -28,6 +31,25 @@ void check_dpi(double dpi, const SourceLocation& where, const char* what) {
   }
 }
 
+// The size a PNG declares in its IHDR chunk, checked before decoding (the decoder would refuse it
+// without naming it, or try to allocate it). Limits as OpenCV's: 2^20 pixels per side, 2^30 in all.
+void check_declared_size(const std::filesystem::path& path, const SourceLocation& where) {
+  std::ifstream in(path, std::ios::binary);
+  unsigned char h[24] = {};
+  in.read(reinterpret_cast<char*>(h), sizeof h);
+  if (in.gcount() != 24 || std::memcmp(h, "\x89PNG\r\n\x1a\n", 8) != 0) return;
+  const auto be32 = [&h](int at) {
+    return (std::uint64_t{h[at]} << 24) | (std::uint64_t{h[at + 1]} << 16) | (std::uint64_t{h[at + 2]} << 8) | h[at + 3];
+  };
+  const std::uint64_t width = be32(16), height = be32(20);
+  constexpr std::uint64_t max_side = std::uint64_t{1} << 20, max_pixels = std::uint64_t{1} << 30;
+  if (width > max_side || height > max_side || width * height > max_pixels) {
+    throw Error(where, fmt::format("RANGE: the PNG declares {} × {} pixels; a scan may have at most {} per side and {} "
+                                   "in all",
+                                   width, height, max_side, max_pixels));
+  }
+}
+
 }  // namespace
 
 ScanImage load_scan(const std::filesystem::path& path, std::optional<double> dpi_override, double default_dpi) {
@@ -35,8 +57,14 @@ ScanImage load_scan(const std::filesystem::path& path, std::optional<double> dpi
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw Error(where, "no such file");
   if (std::filesystem::file_size(path, ec) == 0) throw Error(where, "the file is empty (0 bytes), not an image");
+  check_declared_size(path, where);
   // Grey straight from the decoder (a colour scan is never held in colour), at its own bit depth.
-  const cv::Mat raw = cv::imread(path.string(), cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH);
+  cv::Mat raw;
+  try {
+    raw = cv::imread(path.string(), cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH);
+  } catch (const cv::Exception& e) {
+    throw Error(where, std::string("not a readable image: ") + e.what());
+  }
   if (raw.empty()) throw Error(where, "not a readable image (PNG, TIFF or JPEG expected)");
   if (raw.rows < 1 || raw.cols < 1) throw Error(where, "the image has no pixels");
 

@@ -125,6 +125,16 @@ detail::Scene place_plate(const Plate& plate, const RenderOptions& o, std::vecto
   return scene;
 }
 
+// The scan's metadata and ground truth, and the scene its image is made from.
+detail::Scene prepare(const std::vector<std::vector<Point2>>& sides, bool closed, const RenderOptions& o, RenderedScan& scan) {
+  detail::check_render_options(o);
+  const detail::Scene scene = place(sides, o, scan.sides);
+  scan.dpi = o.dpi;
+  scan.mark_width_m = o.mark_width_m;
+  scan.closed = closed;
+  scan.truth = evaluation::measure_sides(scan.sides, closed, o.truth_options);
+  return scene;
+}
 }  // namespace
 
 cv::Size rendered_size(const std::vector<std::vector<Point2>>& sides, const RenderOptions& o) {
@@ -135,26 +145,14 @@ cv::Size rendered_size(const std::vector<std::vector<Point2>>& sides, const Rend
 }
 
 RenderedScan render_scan(const std::vector<std::vector<Point2>>& sides, bool closed, const RenderOptions& o, const RowSink& sink) {
-  detail::check_render_options(o);
   RenderedScan scan;
-  const detail::Scene scene = place(sides, o, scan.sides);
-  scan.dpi = o.dpi;
-  scan.mark_width_m = o.mark_width_m;
-  scan.closed = closed;
-  scan.truth = evaluation::measure_sides(scan.sides, closed, o.truth_options);
-  detail::rasterise(scene, o, sink);
+  detail::rasterise(prepare(sides, closed, o, scan), o, sink);
   return scan;
 }
 
 RenderedScan render_scan(const std::vector<std::vector<Point2>>& sides, bool closed, const RenderOptions& o) {
-  detail::check_render_options(o);
   RenderedScan scan;
-  const detail::Scene scene = place(sides, o, scan.sides);
-  scan.dpi = o.dpi;
-  scan.mark_width_m = o.mark_width_m;
-  scan.closed = closed;
-  scan.truth = evaluation::measure_sides(scan.sides, closed, o.truth_options);
-  scan.image = detail::rasterise_image(scene, o);
+  scan.image = detail::rasterise_image(prepare(sides, closed, o, scan), o);
   return scan;
 }
 

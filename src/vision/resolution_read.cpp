@@ -129,7 +129,7 @@ std::optional<Resolution> parse(const ReadAt& read) {
 std::optional<Resolution> resolution_from_memory(std::span<const std::uint8_t> bytes) {
   return parse([bytes](std::uint64_t off, std::size_t n, std::uint8_t* out) {
     if (off > bytes.size() || n > bytes.size() - off) return false;
-    std::memcpy(out, bytes.data() + off, n);
+    if (n > 0) std::memcpy(out, bytes.data() + off, n);  // an empty segment may come with a null `out`
     return true;
   });
 }

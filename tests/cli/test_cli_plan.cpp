@@ -142,7 +142,7 @@ TEST(CliPlan, RealisticMarkingJobsStayWithinLimitsAndWorkspace) {
     const auto s = r.json();
     EXPECT_LE(s["peak_acceleration_m_s2"].get<double>(), 5 * g * (1 + 1e-9)) << job;
     EXPECT_LE(s["peak_jerk_m_s3"].get<double>(), 5 * g / 0.005 * (1 + 1e-9)) << job;
-    EXPECT_GT(s["segments"].get<int>(), 1000) << job;
+    EXPECT_GT(s["segments"].get<int>(), 500) << job;  // chords blended into chains of arcs
     const auto rows = read_trajectory(dir / "job.csv");
     for (const auto& row : rows) {
       ASSERT_GE(row.x, 172.132) << job;

@@ -34,11 +34,12 @@ std::vector<Row> read_rows(const std::filesystem::path& path) {
   return rows;
 }
 
+// These three compare the thesis's method (quasi-static, unsmoothed) with independent computations.
 TEST(CliRun, YMotionMatchesAnIndependentComputation) {
   TempDir dir;
   const CliResult plan = run_cli("plan " + kExamples + "y_motion.gcode --accel 5g -o traj.csv", dir.path());
   ASSERT_EQ(plan.exit_code, 0) << plan.err;
-  const CliResult run = run_cli("run " + kExamples + "y_motion.gcode --accel 5g -o joints.csv --json", dir.path());
+  const CliResult run = run_cli("run " + kExamples + "y_motion.gcode --accel 5g -o joints.csv --json --compensation quasi-static --smooth-ms 0", dir.path());
   ASSERT_EQ(run.exit_code, 0) << run.err;
 
   // The thesis's per-point fits at x2y1 … x2y5 (the y motion runs along x = 222.132 mm, the grid's
@@ -86,10 +87,10 @@ TEST(CliRun, YMotionMatchesAnIndependentComputation) {
 TEST(CliRun, NoCompensationAndGainZeroGiveTheSameJointsAndTheCorrectionScalesWithGain) {
   TempDir dir;
   const std::string job = kExamples + "triangle.gcode";
-  ASSERT_EQ(run_cli("run " + job + " --no-compensation -o a.csv", dir.path()).exit_code, 0);
-  ASSERT_EQ(run_cli("run " + job + " --gain 0 -o b.csv", dir.path()).exit_code, 0);
-  const CliResult half = run_cli("run " + job + " --gain 0.5 --json", dir.path());
-  const CliResult full = run_cli("run " + job + " --json", dir.path());
+  ASSERT_EQ(run_cli("run " + job + " --no-compensation -o a.csv --compensation quasi-static --smooth-ms 0", dir.path()).exit_code, 0);
+  ASSERT_EQ(run_cli("run " + job + " --gain 0 -o b.csv --compensation quasi-static --smooth-ms 0", dir.path()).exit_code, 0);
+  const CliResult half = run_cli("run " + job + " --gain 0.5 --json --compensation quasi-static --smooth-ms 0", dir.path());
+  const CliResult full = run_cli("run " + job + " --json --compensation quasi-static --smooth-ms 0", dir.path());
   const auto a = read_rows(dir / "a.csv"), b = read_rows(dir / "b.csv");
   ASSERT_EQ(a.size(), b.size());
   for (std::size_t k = 0; k < a.size(); ++k) {
@@ -104,8 +105,8 @@ TEST(CliRun, NoCompensationAndGainZeroGiveTheSameJointsAndTheCorrectionScalesWit
 TEST(CliRun, NumericAndAnalyticAccelerationAgreeWithinTheDiscretisationError) {
   TempDir dir;
   const std::string job = kExamples + "y_motion.gcode --accel 5g";
-  ASSERT_EQ(run_cli("run " + job + " -o analytic.csv", dir.path()).exit_code, 0);
-  ASSERT_EQ(run_cli("run " + job + " --accel-source numeric -o numeric.csv", dir.path()).exit_code, 0);
+  ASSERT_EQ(run_cli("run " + job + " -o analytic.csv --compensation quasi-static --smooth-ms 0", dir.path()).exit_code, 0);
+  ASSERT_EQ(run_cli("run " + job + " --accel-source numeric -o numeric.csv --compensation quasi-static --smooth-ms 0", dir.path()).exit_code, 0);
   const auto a = read_rows(dir / "analytic.csv"), n = read_rows(dir / "numeric.csv");
   ASSERT_EQ(a.size(), n.size());
   // The central difference of a piecewise-cubic position is exact inside a phase; across a jerk step Δj
@@ -126,7 +127,7 @@ TEST(CliRun, BinaryOutputHoldsTheSameCommands) {
   ASSERT_EQ(run_cli("run " + job + " -o j.csv", dir.path()).exit_code, 0);
   ASSERT_EQ(run_cli("run " + job + " -o j.bin --format bin", dir.path()).exit_code, 0);
   const auto rows = read_rows(dir / "j.csv");
-  EXPECT_EQ(std::filesystem::file_size(dir / "j.bin"), 64u + 112u * rows.size());
+  EXPECT_EQ(std::filesystem::file_size(dir / "j.bin"), 128u + 120u * rows.size());  // binary version 2
 }
 
 TEST(CliRun, LeavingTheWorkspaceFailsNamingTimeLineAndQuantityAndLeavesNoFile) {

@@ -99,8 +99,8 @@ TEST(RunJob, WritesTheSameFileAndSummaryAsOneSampleAtATime) {
   test::TempDir dir;
   for (AccelerationSource acceleration : {AccelerationSource::analytic, AccelerationSource::numeric}) {
     for (OutputFormat format : {OutputFormat::binary, OutputFormat::csv}) {
-      auto a = make_joint_writer(format, (dir / "a").string(), 2000.0, "oc-gu");
-      auto b = make_joint_writer(format, (dir / "b").string(), 2000.0, "oc-gu");
+      auto a = make_joint_writer(format, (dir / "a").string(), 2000.0, {"oc-gu", ""});
+      auto b = make_joint_writer(format, (dir / "b").string(), 2000.0, {"oc-gu", ""});
       const JobSummary x = sequential(job, comp, a.get(), acceleration);
       const JobSummary y = pipelined(job, comp, b.get(), acceleration);
       EXPECT_GT(y.samples, 20000u);
@@ -124,7 +124,7 @@ TEST(RunJob, TheFirstProblemInTimeIsReportedAndNoFileIsLeft) {
   // the error must be the one the plain loop meets first, and nothing may be written.
   const Compensator comp = compensator();
   test::TempDir dir;
-  for (int gap : {-1, 1, 3, 60}) {  // −1: the bad line comes first
+  for (int gap : {-1, 2, 3, 60}) {  // −1: the bad line comes first; the planner reads a block or two ahead
     std::string job = hatch(200, 100, "G1 X296 Y0");
     const std::string marker = "G1 X296 Y0\n";
     std::size_t at = job.find(marker) + (gap < 0 ? 0 : marker.size());
@@ -133,7 +133,7 @@ TEST(RunJob, TheFirstProblemInTimeIsReportedAndNoFileIsLeft) {
     const std::string expected = error_of([&] { sequential(job, comp, nullptr, AccelerationSource::analytic); });
     ASSERT_FALSE(expected.empty());
     EXPECT_EQ(expected.find("Q7") != std::string::npos, gap < 0) << expected;
-    auto writer = make_joint_writer(OutputFormat::binary, (dir / "j.bin").string(), 2000.0, "oc-gu");
+    auto writer = make_joint_writer(OutputFormat::binary, (dir / "j.bin").string(), 2000.0, {"oc-gu", ""});
     const std::string got = error_of([&] { pipelined(job, comp, writer.get(), AccelerationSource::analytic); });
     writer.reset();
     // The same place: the refusal's line (the message words differ) or the same G-code error.

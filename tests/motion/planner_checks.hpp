@@ -23,7 +23,7 @@ inline void expect_within_limits(const motion::Trajectory& trajectory, const mot
   for (const auto& segment : trajectory.segments()) {
     const double cap = std::min(segment.path.feed_m_s, limits.max_velocity_m_s);
     for (int k = 0; k <= samples_per_segment; ++k) {
-      const double t = segment.start_time_s + segment.profile.duration_s * k / samples_per_segment;
+      const double t = segment.start_time_s + segment.duration_s * k / samples_per_segment;
       const motion::TrajectorySample s = motion::evaluate(segment, t);
       ASSERT_LE(s.velocity_m_s.norm(), cap * tol) << "line " << segment.path.line << " t " << t;
       ASSERT_LE(s.acceleration_m_s2.norm(), limits.max_acceleration_m_s2 * tol) << "line " << segment.path.line;
@@ -46,15 +46,15 @@ inline void expect_continuous_junctions(const motion::Trajectory& trajectory, co
     ASSERT_LE((end.velocity_m_s - start.velocity_m_s).norm(), j * tau * tau * (1 + 1e-9) + 1e-15) << "line " << a.path.line;
     ASSERT_LE((end.acceleration_m_s2 - start.acceleration_m_s2).norm(), j * tau * (1 + 1e-9) + 1e-12)
         << "line " << a.path.line;
-    ASSERT_EQ(a.profile.end_velocity_m_s, b.profile.start_velocity_m_s);
+    ASSERT_EQ(a.exit_speed_m_s, b.entry_speed_m_s);
     const double turn = motion::turn_angle_rad(motion::end_tangent(a.path), motion::start_tangent(b.path));
     if (a.path.mode == motion::JunctionMode::exact_stop && turn > rules.corner_angle_rad) {
-      ASSERT_EQ(a.profile.end_velocity_m_s, 0.0) << "G61 corner at line " << a.path.line;
+      ASSERT_EQ(a.exit_speed_m_s, 0.0) << "G61 corner at line " << a.path.line;
     }
   }
   if (!segs.empty()) {
-    EXPECT_EQ(segs.front().profile.start_velocity_m_s, 0.0);
-    EXPECT_EQ(segs.back().profile.end_velocity_m_s, 0.0);
+    EXPECT_EQ(segs.front().entry_speed_m_s, 0.0);
+    EXPECT_EQ(segs.back().exit_speed_m_s, 0.0);
   }
 }
 

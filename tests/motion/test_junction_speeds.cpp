@@ -65,5 +65,30 @@ TEST(JunctionSpeeds, EntryAndExitRulesAgreeWithABruteForceScan) {
   }
 }
 
+TEST(JunctionSpeeds, ExitBelowTheTargetIsTheHighestThatFits) {
+  // The branch where braking from the entry v to the wanted exit does not fit but braking further
+  // does: the entry is 70-100 % of the highest reachable from rest (so stopping fits) and the wanted
+  // exit lies part-way down. The answer must fit and a speed 1e-6·v above it must not (unless that
+  // passes the wanted exit), judged on distances, independently of the solver's own speed test.
+  std::mt19937_64 rng(4711);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int in_branch = 0;
+  for (int c = 0; c < test::random_cases(20000); ++c) {
+    const double a = 1.0 + 60.0 * unit(rng), j = 50.0 * std::pow(400.0, unit(rng));
+    const double L = std::pow(10.0, -7.0 + 6.0 * unit(rng));
+    const double v = reachable_speed(L, 0.0, a, j) * (0.7 + 0.3 * unit(rng)), w = v * unit(rng);
+    if (fits(L, v, w, a, j)) continue;
+    ++in_branch;
+    const double exit = max_exit_speed(L, v, w, a, j);
+    ASSERT_LE(exit, w) << "case " << c;
+    ASSERT_TRUE(fits(L, v, exit, a, j)) << "case " << c;
+    const double above = exit + 1e-6 * v;
+    if (above < w) {
+      EXPECT_FALSE(fits(L, v, above, a, j)) << "case " << c << ": exit " << exit << " of " << v;
+    }
+  }
+  EXPECT_GT(in_branch, test::random_cases(20000) / 20);  // about 6 % of the cases
+}
+
 }  // namespace
 }  // namespace stiffpath::motion

@@ -1,6 +1,8 @@
 // Planner property tests over seeded random programs: limits, continuity, G61 stops, and whole-program look-ahead.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <optional>
 #include <random>
 #include <sstream>
 
@@ -60,65 +62,120 @@ TEST(PlannerRandom, ExactStopProgramsPassEveryProgrammedPointAndEndAtRest) {
   }
 }
 
-// The reference: whole-program look-ahead written out plainly (all junction limits, a full backward
-// pass, a forward pass) on the same segments.
-std::vector<double> reference_junction_speeds(const std::string& gcode, const PlanOptions& options) {
+// The reference: whole-program look-ahead written out plainly (all runs, all junction limits, a full
+// backward pass, a forward pass) on the same segments, gathered into runs by the same rule.
+struct ReferenceRun {
+  double length_m = 0.0, entry_limit_m_s = 0.0;
+  SegmentLimits limits;
+  bool dwell = false;
+  std::size_t segments = 0;
+};
+
+std::vector<ReferenceRun> reference_runs(const std::string& gcode, const PlanOptions& options) {
   std::istringstream in(gcode);
   GcodeReader reader(in, "job.gcode", options.gcode);
   CornerBlender blender(reader, options.planner.junction.corner_angle_rad);
-  std::vector<PathSegment> segs;
-  while (auto s = blender.next()) segs.push_back(*s);
-  const std::size_t n = segs.size();
-  std::vector<SegmentLimits> lim(n);
-  for (std::size_t i = 0; i < n; ++i) lim[i] = segment_limits(segs[i], options.limits);
+  std::vector<ReferenceRun> runs;
+  std::optional<Run> open;
+  PathSegment previous;
+  SegmentLimits previous_limits;
+  double previous_cap = 0.0;
+  while (auto s = blender.next()) {
+    if (s->kind != SegmentKind::dwell && !(s->length_m > 0.0)) continue;
+    const SegmentLimits lim = segment_limits(*s, options.limits);
+    if (open && extend_run(*open, previous, previous_limits, *s, lim, options.limits, options.planner.junction,
+                           options.planner.runs)) {
+      ++runs.back().segments;
+    } else {
+      if (open) {
+        runs.back().length_m = open->length_m;
+        runs.back().limits = open->low;
+        runs.back().entry_limit_m_s = std::min({runs.back().entry_limit_m_s, open->low.max_velocity_m_s, previous_cap});
+        previous_cap = runs.back().dwell ? 0.0 : open->low.max_velocity_m_s;
+      }
+      const double junction = runs.empty() ? 0.0
+                                           : junction_speed_limit(previous, previous_limits, *s, lim, options.limits,
+                                                                  options.planner.junction);
+      runs.push_back({0.0, junction, lim, s->kind == SegmentKind::dwell, 1});
+      open = start_run(*s, lim, options.planner.runs);
+    }
+    previous = *s;
+    previous_limits = lim;
+  }
+  if (open) {
+    runs.back().length_m = open->length_m;
+    runs.back().limits = open->low;
+    runs.back().entry_limit_m_s = std::min({runs.back().entry_limit_m_s, open->low.max_velocity_m_s, previous_cap});
+  }
+  return runs;
+}
+
+std::vector<double> reference_junction_speeds(const std::vector<ReferenceRun>& runs) {
+  const std::size_t n = runs.size();
   std::vector<double> entry_max(n + 1, 0.0);  // entry_max[n]: the end of the program, at rest
   for (std::size_t i = n; i-- > 0;) {
-    const double junction =
-        i == 0 ? 0.0 : junction_speed_limit(segs[i - 1], lim[i - 1], segs[i], lim[i], options.limits, options.planner.junction);
-    const auto& l = lim[i];
-    const double braking = segs[i].kind == SegmentKind::dwell
-                               ? 0.0
-                               : max_entry_speed(segs[i].length_m, entry_max[i + 1], l.max_acceleration_m_s2, l.max_jerk_m_s3);
-    entry_max[i] = std::min(junction, braking);
+    const auto& l = runs[i].limits;
+    const double braking =
+        runs[i].dwell ? 0.0 : max_entry_speed(runs[i].length_m, entry_max[i + 1], l.max_acceleration_m_s2, l.max_jerk_m_s3);
+    entry_max[i] = std::min(runs[i].entry_limit_m_s, braking);
   }
   std::vector<double> speed(n + 1, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
-    const auto& l = lim[i];
-    speed[i + 1] = segs[i].kind == SegmentKind::dwell
-                       ? 0.0
-                       : max_exit_speed(segs[i].length_m, speed[i], entry_max[i + 1], l.max_acceleration_m_s2, l.max_jerk_m_s3);
+    const auto& l = runs[i].limits;
+    speed[i + 1] = runs[i].dwell ? 0.0
+                                 : max_exit_speed(runs[i].length_m, speed[i], entry_max[i + 1], l.max_acceleration_m_s2,
+                                                  l.max_jerk_m_s3);
   }
   return speed;
 }
 
 TEST(PlannerRandom, StreamedPlanEqualsWholeProgramLookAhead) {
   std::mt19937_64 rng(5);
+  std::size_t joined = 0;
   for (int p = 0; p < std::max(4, test::random_cases(400) / 20); ++p) {
     const std::string gcode = test::random_program(rng, 80);
-    const PlanOptions options;
-    const Trajectory trajectory = plan_text(gcode, options);
-    const std::vector<double> reference = reference_junction_speeds(gcode, options);
-    ASSERT_EQ(reference.size(), trajectory.segments().size() + 1);
-    for (std::size_t i = 0; i < trajectory.segments().size(); ++i) {
-      ASSERT_EQ(trajectory.segments()[i].profile.start_velocity_m_s, reference[i]) << "program " << p << " segment " << i;
-      ASSERT_EQ(trajectory.segments()[i].profile.end_velocity_m_s, reference[i + 1]) << "program " << p;
+    for (const bool runs : {true, false}) {
+      PlanOptions options;
+      options.planner.one_profile_per_run = runs;
+      if (!runs) options.planner.runs.max_segments = 1;  // the reference groups by the same rules
+      const Trajectory trajectory = plan_text(gcode, options);
+      const std::vector<ReferenceRun> reference_runs_of_program = reference_runs(gcode, options);
+      const std::vector<double> reference = reference_junction_speeds(reference_runs_of_program);
+      ASSERT_EQ(reference.size(), reference_runs_of_program.size() + 1);
+      std::size_t segment = 0;
+      for (std::size_t r = 0; r < reference_runs_of_program.size(); ++r) {
+        ASSERT_LT(segment, trajectory.segments().size());
+        ASSERT_EQ(trajectory.segments()[segment].entry_speed_m_s, reference[r]) << "program " << p << " run " << r;
+        segment += reference_runs_of_program[r].segments;
+        ASSERT_EQ(trajectory.segments()[segment - 1].exit_speed_m_s, reference[r + 1]) << "program " << p << " run " << r;
+        joined += runs ? reference_runs_of_program[r].segments - 1 : 0;
+      }
+      ASSERT_EQ(segment, trajectory.segments().size());
     }
   }
+  EXPECT_GT(joined, 0u);  // the random programs do have tangent runs
 }
 
 TEST(PlannerRandom, BoundedWindowStaysFeasibleAndIsNeverFaster) {
+  // A full window closes runs early, so with runs the two plans differ in how segments share
+  // profiles; the bounded one must still be feasible. With one profile per segment each of its
+  // junction speeds is at most the whole-program one.
   std::mt19937_64 rng(17);
   for (int p = 0; p < 6; ++p) {
     const std::string gcode = test::random_program(rng, 80);
-    PlanOptions bounded;
-    bounded.planner.max_lookahead_segments = 3;
-    const Trajectory exact = plan_text(gcode), windowed = plan_text(gcode, bounded);
-    test::expect_within_limits(windowed, bounded.limits);
-    test::expect_continuous_junctions(windowed, bounded.limits);
-    ASSERT_EQ(exact.segments().size(), windowed.segments().size());
-    EXPECT_GE(windowed.duration_s(), exact.duration_s() * (1 - 1e-12));
-    for (std::size_t i = 0; i < exact.segments().size(); ++i) {
-      EXPECT_LE(windowed.segments()[i].profile.end_velocity_m_s, exact.segments()[i].profile.end_velocity_m_s * (1 + 1e-12));
+    for (const bool runs : {true, false}) {
+      PlanOptions whole, bounded;
+      whole.planner.one_profile_per_run = bounded.planner.one_profile_per_run = runs;
+      bounded.planner.max_lookahead_segments = 3;
+      const Trajectory exact = plan_text(gcode, whole), windowed = plan_text(gcode, bounded);
+      test::expect_within_limits(windowed, bounded.limits);
+      test::expect_continuous_junctions(windowed, bounded.limits);
+      ASSERT_EQ(exact.segments().size(), windowed.segments().size());
+      if (runs) continue;
+      EXPECT_GE(windowed.duration_s(), exact.duration_s() * (1 - 1e-12));
+      for (std::size_t i = 0; i < exact.segments().size(); ++i) {
+        EXPECT_LE(windowed.segments()[i].exit_speed_m_s, exact.segments()[i].exit_speed_m_s * (1 + 1e-12));
+      }
     }
   }
 }
@@ -131,9 +188,9 @@ TEST(PlannerRandom, AnalyticDerivativesMatchFiniteDifferencesOnLinesAndArcs) {
   int arcs = 0;
   for (const auto& seg : trajectory.segments()) {
     // Differences over steps near the resolution of the program clock (ulp(t) ≈ 1e-16 s) say nothing.
-    if (seg.path.kind == SegmentKind::dwell || seg.profile.duration_s < 1e-6) continue;
+    if (seg.path.kind == SegmentKind::dwell || seg.duration_s < 1e-6) continue;
     arcs += seg.path.kind == SegmentKind::arc;
-    const double h = 1e-4 * seg.profile.duration_s, t = seg.start_time_s + 2 * h + (seg.profile.duration_s - 4 * h) * unit(rng);
+    const double h = 1e-4 * seg.duration_s, t = seg.start_time_s + 2 * h + (seg.duration_s - 4 * h) * unit(rng);
     const TrajectorySample m = evaluate(seg, t - h), z = evaluate(seg, t), q = evaluate(seg, t + h);
     const MotionLimits lim;
     const double pos_scale = z.position_m.norm(), vel_scale = 2.0, acc_scale = lim.max_acceleration_m_s2;
@@ -143,7 +200,7 @@ TEST(PlannerRandom, AnalyticDerivativesMatchFiniteDifferencesOnLinesAndArcs) {
               lim.max_jerk_m_s3 * h + 8 * eps * vel_scale / h + 1e-9) << "line " << seg.path.line;
     // The profile's jerk switches between phases; compare where no phase boundary lies within ±h.
     bool switch_nearby = false;
-    double boundary = seg.start_time_s;
+    double boundary = seg.start_time_s - seg.profile_offset_s;
     for (const double phase : seg.profile.phase_s) {
       boundary += phase;
       switch_nearby = switch_nearby || std::abs(boundary - t) <= 1.01 * h;

@@ -130,6 +130,47 @@ TEST(ProfileRandom, WithinLimitsContinuousAndExactAtBothEnds) {
   }
 }
 
+TEST(ProfileRandom, TimeAtInvertsTheArcLength) {
+  std::mt19937_64 rng(606);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int c = 0; c < test::random_cases(2000); ++c) {
+    const RandomInput r = random_input(rng);
+    Profile p;
+    ASSERT_EQ(solve_profile(r.input, p), ProfileStatus::ok);
+    const double t = p.duration_s * unit(rng);
+    const ProfileState state = p.state_at(t);
+    const double back = p.time_at(state.s_m);
+    // s(t) is flat only where v = 0 (at rest), so the time is recovered up to s's rounding over v.
+    const double eps = std::numeric_limits<double>::epsilon();
+    EXPECT_NEAR(p.state_at(back).s_m, state.s_m, 16 * eps * r.input.length_m + 1e-300) << "case " << c;
+    if (state.v_m_s > 1e-6) {
+      EXPECT_NEAR(back, t, 16 * eps * (r.input.length_m / state.v_m_s + p.duration_s)) << "case " << c;
+    }
+  }
+  Profile p;
+  ASSERT_EQ(solve_profile({0.1, 0.0, 0.0, 2.0, 49.03325, 9806.65}, p), ProfileStatus::ok);
+  EXPECT_EQ(p.time_at(0.0), 0.0);
+  EXPECT_EQ(p.time_at(0.1), p.duration_s);
+  EXPECT_NEAR(p.time_at(0.05), 0.5 * p.duration_s, 1e-15);  // symmetric rest-to-rest profile
+}
+
+TEST(ProfileRandom, ReachableSpeedInvertsTheDistanceOverRandomInputs) {
+  // As the hand-picked grid in test_profile.cpp: the distances of the speeds a few ulps below and
+  // above the answer bracket the length, over random speeds, lengths (1 nm … 1 m) and limits.
+  std::mt19937_64 rng(2718);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double eps = 4.0 * std::numeric_limits<double>::epsilon();
+  for (int c = 0; c < test::random_cases(20000); ++c) {
+    const double a = 1.0 + 60.0 * unit(rng), j = 50.0 * std::pow(400.0, unit(rng));
+    const double v0 = unit(rng) < 0.2 ? 0.0 : 3.0 * unit(rng), L = std::pow(10.0, -9.0 + 9.0 * unit(rng));
+    const double v = reachable_speed(L, v0, a, j);
+    ASSERT_GE(v, v0) << "case " << c;
+    const double below = std::max(v0, v * (1.0 - eps) - 1e-300), above = v * (1.0 + eps) + 1e-300;
+    ASSERT_LE(speed_change(v0, below, a, j).distance_m, L) << "case " << c;
+    ASSERT_GE(speed_change(v0, above, a, j).distance_m, L) << "case " << c;
+  }
+}
+
 TEST(ProfileRandom, DerivativesAreConsistentWithFiniteDifferences) {
   std::mt19937_64 rng(77);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -145,6 +186,61 @@ TEST(ProfileRandom, DerivativesAreConsistentWithFiniteDifferences) {
     EXPECT_NEAR((q.s_m - m.s_m) / (2 * h), z.v_m_s, j * h * h + 8 * eps * r.input.length_m / h) << "case " << c;
     EXPECT_NEAR((q.v_m_s - m.v_m_s) / (2 * h), z.a_m_s2, j * h + 8 * eps * z.v_m_s / h + 1e-12) << "case " << c;
   }
+}
+
+// Independent reference for the peak speed: bisection on the distance of the two halves, each
+// from the closed forms T = 2·sqrt(Δv/j) (triangle) or Δv/a + a/j (trapezoid), distance (v₁+v₂)/2·T.
+struct Half {
+  double time, distance;
+};
+Half half(double from, double to, double a, double j) {
+  const double dv = std::abs(to - from), t = dv * j <= a * a ? 2.0 * std::sqrt(dv / j) : dv / a + a / j;
+  return {t, 0.5 * (from + to) * t};
+}
+
+double bisection_duration(const ProfileInput& in) {
+  const double v0 = in.start_velocity_m_s, v1 = in.end_velocity_m_s, a = in.max_acceleration_m_s2,
+               j = in.max_jerk_m_s3;
+  const auto fits = [&](double vp) { return half(v0, vp, a, j).distance + half(vp, v1, a, j).distance <= in.length_m; };
+  double lo = std::max(v0, v1), hi = std::max(in.max_velocity_m_s, lo);
+  if (fits(hi)) {
+    lo = hi;
+  } else {
+    for (int k = 0; k < 200 && hi - lo > 0.0; ++k) {
+      const double mid = 0.5 * (lo + hi);
+      if (mid <= lo || mid >= hi) break;
+      (fits(mid) ? lo : hi) = mid;
+    }
+  }
+  const Half up = half(v0, lo, a, j), down = half(lo, v1, a, j);
+  return up.time + down.time + (lo > 0.0 ? std::max(in.length_m - up.distance - down.distance, 0.0) / lo : 0.0);
+}
+
+TEST(ProfileRandom, DurationsAgreeWithBisectionOnThePeakSpeedInEveryCase) {
+  // Many inputs of the two cases below the acceleration limit (a quartic's root each): short
+  // lengths, so that no cruise fits, over the varied limits of random_input.
+  std::mt19937_64 rng(31337);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const int cases = test::random_cases(20000);
+  int two_triangles = 0, triangle_trapezoid = 0;
+  for (int c = 0; c < cases; ++c) {
+    ProfileInput in = random_input(rng).input;
+    const double least = speed_change(in.start_velocity_m_s, in.end_velocity_m_s, in.max_acceleration_m_s2,
+                                      in.max_jerk_m_s3).distance_m;
+    if (c % 2 == 0) in.length_m = least + std::pow(10.0, -9.0 + 8.0 * unit(rng));
+    Profile p;
+    ASSERT_EQ(solve_profile(in, p), ProfileStatus::ok) << "case " << c;
+    const double reference = bisection_duration(in);
+    ASSERT_NEAR(p.duration_s, reference, 1e-12) << "case " << c;
+    if (p.peak_velocity_m_s < in.max_velocity_m_s && p.phase_s[3] * p.peak_velocity_m_s <= 1e-12 * in.length_m) {
+      const bool up = p.phase_s[1] > 0.0, down = p.phase_s[5] > 0.0;
+      two_triangles += !up && !down && p.phase_s[0] > 0.0 && p.phase_s[4] > 0.0;
+      triangle_trapezoid += up != down && p.phase_s[0] > 0.0 && p.phase_s[4] > 0.0;
+    }
+  }
+  // The sweep reaches both quartic cases often (a tenth of the inputs each at least).
+  EXPECT_GT(two_triangles, cases / 10);
+  EXPECT_GT(triangle_trapezoid, cases / 20);
 }
 
 TEST(ProfileRandom, NoCandidateOfAFineGridSearchIsFaster) {

@@ -31,12 +31,12 @@ TEST(Trajectory, LineIntoTangentArcDoesNotStopAndArcAccelerationIsCentripetal) {
   // G61, line along +x into a counter-clockwise arc of R = 20 mm tangent to it.
   const Trajectory t = test::plan_text("G0 X180 Y-40\nG61 G1 X220 F6000\nG3 X240 Y-20 I0 J20\n");
   ASSERT_EQ(t.segments().size(), 2u);
-  const double v_junction = t.segments()[0].profile.end_velocity_m_s;
+  const double v_junction = t.segments()[0].exit_speed_m_s;
   // Curvature step 1/R at zero tangential acceleration: v ≤ sqrt(j·τ·R) = 0.313 m/s > F = 0.1 m/s.
   EXPECT_DOUBLE_EQ(v_junction, 0.1);
   // Mid-arc the speed is the feed and the acceleration purely centripetal: v²/R towards the centre.
   const auto& arc = t.segments()[1];
-  const TrajectorySample mid = evaluate(arc, arc.start_time_s + 0.5 * arc.profile.duration_s);
+  const TrajectorySample mid = evaluate(arc, arc.start_time_s + 0.5 * arc.duration_s);
   EXPECT_NEAR(mid.path_speed_m_s, 0.1, 1e-12);
   const Vec2 to_centre = (Vec2(0.220, -0.020) - mid.position_m).normalized();
   EXPECT_NEAR(mid.acceleration_m_s2.dot(to_centre), 0.01 / 0.02, 1e-9);
@@ -51,7 +51,7 @@ TEST(Trajectory, DwellHoldsStillForItsDuration) {
   const Trajectory t = test::plan_text("G0 X200 Y0\nM3 S10\nG1 X210 F600\nG4 P0.25\nG1 X220\n");
   ASSERT_EQ(t.segments().size(), 3u);
   const auto& dwell = t.segments()[1];
-  EXPECT_EQ(dwell.profile.duration_s, 0.25);
+  EXPECT_EQ(dwell.duration_s, 0.25);
   const TrajectorySample s = evaluate(dwell, dwell.start_time_s + 0.1);
   EXPECT_EQ(s.position_m, Vec2(0.210, 0.0));
   EXPECT_EQ(s.velocity_m_s, Vec2::Zero());

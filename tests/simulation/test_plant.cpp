@@ -62,8 +62,10 @@ TEST(Plant, ConstantForceGivesStaticDeflection) {
     const Vec2 q = f.q_at(p);
     plant.reset(q);
     for (int i = 0; i < 8000; ++i) plant.step(hold(q), 5e-5, F);  // 0.4 s ≫ 1/(ζω)
-    const Vec2 expected = f.truth->compliance(p) * F;
-    const Vec2 got = plant.state().tip_m - p;
+    // The spring deflects by C_true·F relative to the base point, wherever the loaded servo has let it sit.
+    const Vec2 base = plant.base();
+    const Vec2 expected = f.truth->compliance(base) * F;
+    const Vec2 got = plant.state().tip_m - base;
     EXPECT_LT((got - expected).norm(), 1e-3 * expected.norm()) << trial;
   }
 }
@@ -75,6 +77,7 @@ TEST(Plant, FreeOscillationFrequencyAndDecay) {
   for (double zeta : {0.0, 0.05, 0.2}) {
     PlantOptions o;
     o.tip_damping_ratio = zeta;
+    o.servo_feels_load = false;  // the tip's own modes: a base that does not give way
     Plant plant = f.plant(o);
     const Vec2 q = f.q_at(p);
     plant.reset(q);
@@ -114,6 +117,7 @@ TEST(Plant, EnergyDoesNotGrowWithoutDamping) {
   const Fixture f;
   PlantOptions o;
   o.tip_damping_ratio = 0.0;
+  o.servo_feels_load = false;  // a loaded servo would drain energy through its velocity loop
   Plant plant = f.plant(o);
   const Vec2 p(0.2, -0.05), q = f.q_at(p);
   plant.reset(q);
@@ -135,6 +139,44 @@ TEST(Plant, EnergyDoesNotGrowWithoutDamping) {
   EXPECT_NEAR(plant.relative_energy(), e0, 0.05 * e0);
 }
 
+// The drive is a P/P cascade: at equilibrium 0 = K_v·K_p·(q_ref − q) + Jᵀ·F, with K_v = 2ζ_sω_s·J_tune and
+// K_p = ω_s/(2ζ_s), so q − q_ref = Jᵀ·F/(J_tune·ω_s²). For the thesis robot at the rectangle's centre
+// (222.132, 0) mm JᵀJ has l² = 0.0225 m² on its diagonal, so J_tune = 0.01 + 3.6·0.0225 = 0.091 kg·m².
+TEST(Plant, ConstantLoadGivesTheStaticJointErrorOfTheGains) {
+  const Fixture f;
+  const double j_tune = 0.01 + 3.6 * 0.150 * 0.150, omega = 2 * std::numbers::pi * 100.0;
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> ux(0.18, 0.26), uy(-0.06, 0.06), uf(-150, 150);
+  for (int trial = 0; trial < 4; ++trial) {
+    const Vec2 p(ux(rng), uy(rng)), F(uf(rng), uf(rng));
+    PlantOptions o;
+    o.tip_damping_ratio = 0.5;
+    Plant plant = f.plant(o);
+    EXPECT_NEAR(plant.tuning_inertia().x(), j_tune, 1e-9);
+    const Vec2 q = f.q_at(p);
+    plant.reset(q);
+    for (int i = 0; i < 8000; ++i) plant.step(hold(q), 5e-5, F);
+    const Vec2 expected = f.spec.five_bar().jacobian(q).transpose() * F / (j_tune * omega * omega);
+    const Vec2 got = plant.state().q_rad - q;
+    EXPECT_GT(expected.norm(), 1e-5);  // a visible error: ~0.1 mrad per 100 N
+    EXPECT_LT((got - expected).norm(), 2e-3 * expected.norm()) << trial;
+  }
+}
+
+// Loaded, with feed-forward and the CG lever: a robot holding still stays exactly where it is.
+TEST(Plant, LoadedServoAtRestStaysAtRest) {
+  const Fixture f;
+  for (const Vec2& p : {Vec2(0.2, 0.02), Vec2(0.26, -0.07)}) {
+    Plant plant(f.spec.five_bar(), f.truth, 3.6, {}, f.truth);  // any lever: nothing is loaded
+    const Vec2 q = f.q_at(p);
+    plant.reset(q);
+    for (int i = 0; i < 20000; ++i) plant.step(hold(q), 5e-5);
+    EXPECT_LT((plant.state().tip_m - p).norm(), 1e-12);
+    EXPECT_LT((plant.state().q_rad - q).norm(), 1e-14);
+    EXPECT_LT(plant.state().qd_rad_s.norm(), 1e-14);
+  }
+}
+
 TEST(Plant, RejectsBadOptions) {
   const Fixture f;
   PlantOptions o;
@@ -142,6 +184,12 @@ TEST(Plant, RejectsBadOptions) {
   EXPECT_THROW(f.plant(o), Error);
   o = {};
   o.tip_damping_ratio = -0.1;
+  EXPECT_THROW(f.plant(o), Error);
+  o = {};
+  o.motor_inertia_kg_m2 = 0.0;
+  EXPECT_THROW(f.plant(o), Error);
+  o = {};
+  o.load_feedforward = -1.0;
   EXPECT_THROW(f.plant(o), Error);
   EXPECT_THROW(Plant(f.spec.five_bar(), nullptr, 3.6), Error);
   EXPECT_THROW(Plant(f.spec.five_bar(), f.truth, 0.0), Error);

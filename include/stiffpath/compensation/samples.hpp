@@ -18,7 +18,9 @@ struct TaskSample {
   Vec2 acceleration_m_s2 = Vec2::Zero();  //!< analytic from the profile, or numeric (thesis route)
   Vec2 jerk_m_s3 = Vec2::Zero();          //!< feeds the commanded velocity's correction term
   Vec2 snap_m_s4 = Vec2::Zero();          //!< d⁴p/dt⁴; zero inside every jerk-limited phase
+  Vec2 crackle_m_s5 = Vec2::Zero();       //!< d⁵p/dt⁵ (from the smoothing filters; dynamic compensation only)
   bool laser_on = false;
+  double power = 0.0;                     //!< laser power, fraction of full power 0..1 (0 when off)
   int line = 0;                           //!< source G-code line
 };
 
@@ -45,11 +47,13 @@ struct JointCommand {
   Vec2 target_m = Vec2::Zero();        //!< planned point p
   Vec2 command_m = Vec2::Zero();       //!< corrected target p_cmd = p − k·Δ
   Vec2 force_N = Vec2::Zero();         //!< D'Alembert force F = −m·a at the CG
-  Vec2 deflection_m = Vec2::Zero();    //!< predicted Δ = model(p, F)
+  Vec2 deflection_m = Vec2::Zero();    //!< predicted Δ = model(p, F) (dynamic: the tip's lag −δ)
+  Vec2 load_torque_Nm = Vec2::Zero();  //!< Jᵀ·m·a: the tip's load on the drives, for torque feed-forward
   Status status = Status::ok;
   int joint = -1;                      //!< offending joint (0, 1) for joint_* statuses
   bool outside_grid = false;           //!< p was outside the model's grid (clamped or extrapolated)
   bool laser_on = false;
+  double power = 0.0;                  //!< laser power, fraction of full power 0..1 (passed through)
   int line = 0;
 };
 

@@ -1,6 +1,7 @@
 // The compliance model contract: predict(p, F) → Δ and the 2×2 compliance matrix at p (thesis §4.2).
 #pragma once
 
+#include <algorithm>
 #include <memory>
 #include <nlohmann/json_fwd.hpp>
 #include <span>
@@ -46,6 +47,15 @@ struct GridBounds {
   //! The rectangle grown by `margin_m` on every side.
   [[nodiscard]] GridBounds grown(double margin_m) const noexcept {
     return {x_min - margin_m, x_max + margin_m, y_min - margin_m, y_max + margin_m};
+  }
+  //! The empty rectangle, to be grown point by point with include().
+  [[nodiscard]] static constexpr GridBounds none() noexcept { return {1e300, -1e300, 1e300, -1e300}; }
+  //! Grows the rectangle to hold p.
+  void include(const Vec2& p) noexcept {
+    x_min = std::min(x_min, p.x());
+    x_max = std::max(x_max, p.x());
+    y_min = std::min(y_min, p.y());
+    y_max = std::max(y_max, p.y());
   }
 };
 

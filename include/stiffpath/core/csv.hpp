@@ -14,6 +14,10 @@
 
 namespace stiffpath::core {
 
+//! Largest magnitude a CSV number may have (1e12): beyond any time, length, force or angle in our
+//! files, in their units, and small enough that sums of squares in the fits stay finite.
+inline constexpr double max_csv_magnitude = 1e12;
+
 //! Reads a comma-separated file row by row (so files need not fit in memory). The first non-comment
 //! line is the header. Lines starting with '#' and blank lines are skipped. Fields may be quoted
 //! with double quotes. Every accessor that rejects a cell throws stiffpath::Error naming the file,
@@ -38,7 +42,8 @@ class CsvReader {
   [[nodiscard]] std::size_t size() const noexcept { return fields_.size(); }
 
   [[nodiscard]] std::string_view text(std::size_t col) const;
-  //! A finite number; empty cells, NaN, inf and trailing garbage are errors.
+  //! A finite number within ±max_csv_magnitude; empty cells, NaN, inf, 1e300 and trailing garbage
+  //! are errors ("file:line:column: column 'x_mm': RANGE: ...").
   [[nodiscard]] double number(std::size_t col) const;
   //! A finite number, or nullopt for an empty cell (a "missing" value).
   [[nodiscard]] std::optional<double> optional_number(std::size_t col) const;

@@ -10,7 +10,8 @@
 
 namespace stiffpath::core {
 
-//! Parses JSON text; a syntax error becomes stiffpath::Error "label:line:column: ...".
+//! Parses JSON text; a syntax error, a number beyond double range or a key given twice in one
+//! object becomes stiffpath::Error "label:line:column: ...".
 nlohmann::json parse_json(std::string_view text, const std::string& label);
 //! Reads and parses a JSON file; errors name the path.
 nlohmann::json read_json_file(const std::string& path);
@@ -20,6 +21,8 @@ nlohmann::json read_json_file(const std::string& path);
 //! valid JSON (parse it first).
 using JsonKeyIndex = std::map<std::string, std::pair<int, int>, std::less<>>;
 JsonKeyIndex index_json_keys(std::string_view text);
+//! As above, but refuses a key given twice in one object (label:line:column: DUPLICATE: ...).
+JsonKeyIndex index_json_keys(std::string_view text, const std::string& label);
 
 //! A parsed document with the positions of its keys, so that errors can point into the file.
 struct JsonDocument {

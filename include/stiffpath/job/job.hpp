@@ -6,6 +6,7 @@
 #include <string>
 
 #include "stiffpath/compensation/compensator.hpp"
+#include "stiffpath/compensation/reference_filter.hpp"
 #include "stiffpath/job/joint_writer.hpp"
 #include "stiffpath/motion/sampler.hpp"
 
@@ -43,9 +44,12 @@ using Progress = std::function<void(std::uint64_t samples, int line)>;
 //! calling thread. On the first refused sample it throws stiffpath::Error "<job>:<line>: t = … s:
 //! <quantity> …" naming the G-code line, the time and the value against its limit; the writer is
 //! then not finished, so no output file appears. Memory does not depend on the job's length.
+//! `filters` (optional, e.g. the moving average that makes the jerk continuous) act on the planned
+//! samples, after the acceleration source and before compensation; the job then lasts their delay longer.
 JobSummary run_job(motion::SampleSource& source, const compensation::Compensator& compensator, JointWriter* writer,
                    const std::string& job_label, double rate_hz,
-                   AccelerationSource acceleration = AccelerationSource::analytic, const Progress& progress = {});
+                   AccelerationSource acceleration = AccelerationSource::analytic, const Progress& progress = {},
+                   compensation::FilterChain* filters = nullptr);
 
 //! Throws the stiffpath::Error for a refused command `c` (status not ok): "<job>:<line>: t = … s:
 //! <quantity> <value> against <limit>", the message run_job gives, for other loops over step().

@@ -5,7 +5,6 @@
 #include <memory>
 #include <string>
 
-#include "stiffpath/job/fixed_format.hpp"
 #include "stiffpath/compensation/samples.hpp"
 
 namespace stiffpath::job {
@@ -17,20 +16,39 @@ using compensation::Vec2;
 enum class OutputFormat { csv, binary };
 OutputFormat parse_output_format(const std::string& text);  //!< "csv" | "bin"; throws stiffpath::Error
 
-//! CSV header of the joint trajectory (units in the names).
+//! First line of a joint CSV, a comment recording how it was made, followed by
+//! " rate_hz=<Hz> geometry_sha256=<hex, or - when unknown> robot=<name to the end of the line>".
+inline constexpr const char* kJointCsvComment = "# stiffpath joints";
+//! CSV header of the joint trajectory (units in the names), the line after the comment.
 inline constexpr const char* kJointCsvHeader =
-    "t_s,theta1_rad,theta2_rad,omega1_rad_s,omega2_rad_s,laser,x_mm,y_mm,xcmd_mm,ycmd_mm,fx_n,fy_n,line";
+    "t_s,theta1_rad,theta2_rad,omega1_rad_s,omega2_rad_s,alpha1_rad_s2,alpha2_rad_s2,laser,power,x_mm,y_mm,"
+    "xcmd_mm,ycmd_mm,fx_n,fy_n,line";
 
-//! Binary format (docs/compensation.md): a 64-byte header, then one 112-byte record per sample,
+//! Decimals of the CSV columns: t 6 (1 µs), θ 9 (1 nrad), ω 9, α 6, power 6, positions 6 (1 nm),
+//! forces 4 (0.1 mN); every number is the value correctly rounded to them (std::to_chars).
+inline constexpr int kCsvTimeDecimals = 6, kCsvAngleDecimals = 9, kCsvAccelerationDecimals = 6,
+                     kCsvPowerDecimals = 6, kCsvMillimetreDecimals = 6, kCsvForceDecimals = 4;
+
+//! Binary format (docs/compensation.md): a 128-byte header, then one 120-byte record per sample,
 //! all little-endian.
-//!   header: char[8] magic "SPJOINT\0", u32 version = 1, u32 record_bytes = 112, f64 rate_hz,
-//!           u64 sample_count, char[32] mechanism name (NUL-padded)
+//!   header: char[8] magic "SPJOINT\0", u32 version = 2, u32 record_bytes = 120, f64 rate_hz,
+//!           u64 sample_count, char[32] robot name (NUL-padded), char[64] robot geometry SHA-256
+//!           (lower-case hex, NUL-filled when unknown)
 //!   record: f64 t_s, θ1, θ2 (rad), ω1, ω2 (rad/s), α1, α2 (rad/s²), x, y, x_cmd, y_cmd (m),
-//!           Fx, Fy (N); i32 line; u8 laser; 3 bytes of zero padding
+//!           Fx, Fy (N), power (0..1); i32 line; u8 laser; 3 bytes of zero padding
+//! Version 1 (64-byte header without the geometry, 112-byte records without power) is still read.
 inline constexpr char kBinaryMagic[8] = {'S', 'P', 'J', 'O', 'I', 'N', 'T', '\0'};
-inline constexpr std::uint32_t kBinaryVersion = 1;
-inline constexpr std::uint32_t kBinaryHeaderBytes = 64;
-inline constexpr std::uint32_t kBinaryRecordBytes = 112;
+inline constexpr std::uint32_t kBinaryVersion = 2;
+inline constexpr std::uint32_t kBinaryHeaderBytes = 128;
+inline constexpr std::uint32_t kBinaryRecordBytes = 120;
+inline constexpr std::uint32_t kBinaryV1HeaderBytes = 64;
+inline constexpr std::uint32_t kBinaryV1RecordBytes = 112;
+
+//! The robot a joint file is written for: its name and geometry hash (kinematics::Robot::geometry_hash).
+struct JointFileRobot {
+  std::string name;
+  std::string geometry_sha256;
+};
 
 //! Streams commands to a file written atomically: the file appears under its name only when
 //! finish() succeeds; if the writer is destroyed first (an error stopped the job), nothing is left.
@@ -42,8 +60,9 @@ class JointWriter {
   virtual void finish() = 0;
 };
 
-//! A writer for `path` in `format`; `rate_hz` and `mechanism` go into the binary header.
+//! A writer for `path` in `format`; `rate_hz` and the robot go into the binary header or the CSV's
+//! first comment line.
 std::unique_ptr<JointWriter> make_joint_writer(OutputFormat format, const std::string& path, double rate_hz,
-                                               const std::string& mechanism);
+                                               const JointFileRobot& robot);
 
 }  // namespace stiffpath::job

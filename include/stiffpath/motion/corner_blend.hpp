@@ -24,10 +24,20 @@ struct CornerFillet {
 std::optional<CornerFillet> corner_fillet(const Vec2& corner_m, const Vec2& in, const Vec2& out, double tolerance_m,
                                           double max_trim_m) noexcept;
 
+//! The arc that replaces a line of direction `in` from line_start_m to the fillet's entry together
+//! with the fillet: it starts at the line's start and ends at the fillet's exit, tangent there, so
+//! it turns away from `in` at its start by about length·curvature. nullopt when that kink exceeds
+//! max_kink_rad. Used for the remnants (a few nm to µm) that two blends leave of a chord.
+std::optional<PathSegment> arc_absorbing_line(const Vec2& line_start_m, const Vec2& in, const CornerFillet& fillet,
+                                              double max_kink_rad) noexcept;
+
 //! A path stage that replaces each blendable corner by a fillet arc: between two lines, when the
 //! first is in blend mode (G64) with a positive tolerance, the turn exceeds `corner_angle_rad`,
 //! and both lines have the same laser state and rapid flag (a mark must start where programmed).
-//! Each line gives up at most half its programmed length to each of its two corners. The fillet
+//! Each line gives up at most half its programmed length to each of its two corners; what the two
+//! blends leave of it, when shorter than a tenth of the tolerance, joins the following fillet
+//! (arc_absorbing_line with a kink of at most a quarter of corner_angle_rad), so that chord-flattened
+//! curves become chains of arcs without short lines between them (a curvature step each). The fillet
 //! carries the first line's attributes with the lower of both feeds. Holds at most two segments.
 class CornerBlender final : public PathSource {
  public:
@@ -37,6 +47,7 @@ class CornerBlender final : public PathSource {
  private:
   PathSource& source_;
   double corner_angle_rad_;
+  double corner_chord_;                // 2·sin(corner_angle_rad/2): |out − in| of a turn by that angle
   std::optional<PathSegment> held_;    // the last segment, whose end may still be trimmed
   double held_length_m_ = 0.0;         // its programmed length
   std::deque<PathSegment> ready_;

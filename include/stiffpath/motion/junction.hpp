@@ -29,4 +29,14 @@ double junction_speed_limit(const PathSegment& before, const SegmentLimits& befo
                             const SegmentLimits& after_limits, const MotionLimits& limits,
                             const JunctionRules& rules) noexcept;
 
+//! The highest speed at which a tangent junction (turn ≤ corner_angle_rad) may be passed with a
+//! tangential acceleration of up to `tangential_acceleration_m_s2` across it, i.e. inside a run of
+//! segments planned as one profile: then the acceleration also steps by a_t·2·sin(φ/2), which
+//! takes its share of the bound j·τ before the centripetal step v²·|κ₂N₂ − κ₁N₁| gets the rest.
+//! 0 when the junction is not tangent, borders a dwell, or a_t alone would use up the bound.
+double tangent_junction_speed_limit(const PathSegment& before, const SegmentLimits& before_limits,
+                                    const PathSegment& after, const SegmentLimits& after_limits,
+                                    const MotionLimits& limits, const JunctionRules& rules,
+                                    double tangential_acceleration_m_s2) noexcept;
+
 }  // namespace stiffpath::motion

@@ -10,15 +10,24 @@
 
 namespace stiffpath::motion {
 
-//! A segment whose timing is final: its geometry, limits, profile and when it starts.
+//! A segment whose timing is final: its geometry, limits, profile and when it starts. A run of
+//! tangent segments planned as one profile (see PlannerOptions::one_profile_per_run) shares that
+//! profile: each of its segments covers the part of it from profile_offset_s on, for duration_s,
+//! starting at arc length profile_offset_m. A segment planned alone has both offsets 0 and
+//! duration_s = profile.duration_s.
 struct PlannedSegment {
   PathSegment path;
-  SegmentLimits limits;
+  SegmentLimits limits;         //!< the limits the profile keeps (a run's: the lowest of its segments')
   Profile profile;              //!< along the path; a dwell's profile only has its cruise phase at speed 0
   double start_time_s = 0.0;    //!< from the start of the program (s)
+  double duration_s = 0.0;      //!< this segment's share of the profile (s)
+  double profile_offset_s = 0.0;  //!< profile time at which this segment starts (s)
+  double profile_offset_m = 0.0;  //!< profile arc length at which this segment starts (m)
+  double entry_speed_m_s = 0.0;   //!< path speed at the start (m/s)
+  double exit_speed_m_s = 0.0;    //!< path speed at the end (m/s)
   std::size_t index = 0;        //!< 0-based position in the planned program
 
-  [[nodiscard]] double end_time_s() const noexcept { return start_time_s + profile.duration_s; }
+  [[nodiscard]] double end_time_s() const noexcept { return start_time_s + duration_s; }
 };
 
 //! The state of the planned path at one instant, robot frame, SI.
@@ -35,7 +44,8 @@ struct TrajectorySample {
   bool laser_on = false;                  //!< laser firing
 };
 
-//! The sample of a planned segment at time t_s (program time; clamped to the segment). With
+//! The sample of a planned segment at time t_s (program time; clamped to the segment: its start
+//! gives exactly its first point, its end exactly its last). With
 //! T the unit tangent, N its left normal and κ the signed curvature (1/m):
 //!   velocity = v·T,  acceleration = a·T + v²κ·N,  jerk = (j − v³κ²)·T + 3·v·a·κ·N,
 //! where s, v, a, j come from the profile (thesis §4.3, fig. 4.3: "trapezoidal acceleration profile").

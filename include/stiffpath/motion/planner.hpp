@@ -9,6 +9,7 @@
 #include "stiffpath/motion/limits.hpp"
 #include "stiffpath/motion/path_source.hpp"
 #include "stiffpath/motion/planned_segment.hpp"
+#include "stiffpath/motion/planner_run.hpp"
 
 namespace stiffpath::motion {
 
@@ -21,23 +22,34 @@ struct PlannerOptions {
   //! bound the window still only holds the segments since the last junction whose speed can no
   //! longer change (see docs/motion.md), which for real programs is a few hundred at most.
   std::size_t max_lookahead_segments = 0;
+  //! Plan each run of tangent segments with similar limits (RunRules) as one profile, so that the
+  //! tangential acceleration carries across their junctions: chord-flattened contours then reach
+  //! their feed. false: one profile per segment, starting and ending at zero acceleration.
+  bool one_profile_per_run = true;
+  RunRules runs;  //!< which tangent segments share a profile
 };
 
 //! Counters of a planning run.
 struct PlannerStatistics {
-  std::size_t segments = 0;         //!< planned segments handed out
-  std::size_t peak_window = 0;      //!< largest number of segments held at once
-  std::size_t forced_releases = 0;  //!< segments released early because the window was full
+  std::size_t segments = 0;          //!< planned segments handed out
+  std::size_t peak_window = 0;       //!< largest number of segments held at once
+  std::size_t forced_releases = 0;   //!< segments released early because the window was full
+  //! Entry speeds evaluated by the backward passes (each one reachable_speed). Passes are batched
+  //! so that this stays at most 4·runs + 2·(peak_window + 1) however long the braking distances
+  //! are; on CAM programs it is 0.5 to 3 per segment.
+  std::size_t entry_evaluations = 0;
+  std::size_t runs = 0;              //!< profiles solved (a run of tangent segments has one)
 };
 
 //! Plans the segments of a PathSource with look-ahead over the whole program and hands them out
-//! one at a time with their final profiles. Each junction gets the highest speed that (1) its
-//! junction rules allow, (2) the rest of the program can still brake from (backward pass, with
-//! every segment starting and ending at zero tangential acceleration), and (3) can be reached from
-//! the start (forward pass). A segment is released as soon as a later junction is pinned, i.e. its
-//! speed is set by its own rules rather than by what follows: from then on nothing later in the
-//! program can change it, so the streamed result equals planning the whole program at once.
-//! The program starts and ends at rest. A profile that cannot be built is an internal error
+//! one at a time with their final profiles. Tangent segments with similar limits are gathered into
+//! runs (planner_run.hpp) that get one profile each. Each junction between runs gets the highest
+//! speed that (1) its junction rules allow, (2) the rest of the program can still brake from
+//! (backward pass, with every run starting and ending at zero tangential acceleration), and (3)
+//! can be reached from the start (forward pass). A run is released as soon as a later junction is
+//! pinned, i.e. its speed is set by its own rules rather than by what follows: from then on nothing
+//! later in the program can change it, so the streamed result equals planning the whole program at
+//! once. The program starts and ends at rest. A profile that cannot be built is an internal error
 //! (std::logic_error); invalid limits throw stiffpath::Error.
 class Planner final : public SegmentSource {
  public:
@@ -46,25 +58,56 @@ class Planner final : public SegmentSource {
   [[nodiscard]] const PlannerStatistics& statistics() const noexcept { return statistics_; }
 
  private:
-  struct Node {
+  struct Member {  // one segment of a run
     PathSegment path;
-    SegmentLimits limits;
-    double entry_limit_m_s = 0.0;  // junction rules at the start
-    double entry_max_m_s = 0.0;    // after the backward pass over the window
+    double offset_m = 0.0;  // arc length of the run before it
   };
-  void push(const PathSegment& segment);
+  struct Node {  // a closed run: one profile
+    std::size_t members = 0;   // its segments, in order at the front of members_ once it is the front node
+    double length_m = 0.0;
+    SegmentLimits limits;
+    bool dwell = false;
+    double dwell_s = 0.0;
+    int line = 0;              // source line of its first segment
+    double entry_limit_m_s = 0.0;      // junction rules at the start
+    double entry_max_m_s = 0.0;        // after the backward pass over the window
+    double reach_from_rest_m_s = 0.0;  // reachable_speed(length, 0): the exit-independent part of the entry bound
+  };
+  struct Release {  // the run whose segments are being handed out
+    Profile profile;
+    SegmentLimits limits;
+    std::size_t members_left = 0;
+    double profile_time_s = 0.0;  // where the next segment starts on the profile
+    double speed_m_s = 0.0;       // and its speed there
+    double cruise_start_s = 0.0;  // the cruise phase: where it starts in time and arc length
+    double cruise_start_m = 0.0;
+  };
+  void add(const PathSegment& segment);
+  void close_run();
+  void backward_pass();
+  void begin_release();
+  PlannedSegment emit();
   [[nodiscard]] double exit_max(std::size_t i) const noexcept;
   [[nodiscard]] double entry_bound(const Node& node, double exit_max_m_s) const noexcept;
-  PlannedSegment release();
 
   PathSource& source_;
   MotionLimits limits_;
   PlannerOptions options_;
+  std::deque<Member> members_;    // the segments of the window's runs, then those of the open run
   std::deque<Node> window_;
-  std::size_t front_index_ = 0;   // program index of window_.front()
-  std::size_t pinned_end_ = 0;    // 1 + program index of the last pinned junction's segment (0: none)
+  std::optional<Run> open_;       // the run still being extended (not yet in the window)
+  double open_entry_limit_m_s_ = 0.0;
+  double last_cap_m_s_ = 0.0;     // speed cap of the last closed run
+  PathSegment previous_;          // the last segment added, and its limits
+  SegmentLimits previous_limits_;
+  std::optional<Release> release_;
+  std::size_t front_index_ = 0;   // run index of window_.front()
+  std::size_t pinned_end_ = 0;    // 1 + run index of the last pinned junction's run (0: none)
   double entry_speed_m_s_ = 0.0;  // committed speed at the start of window_.front()
   double clock_s_ = 0.0;
+  std::size_t pending_ = 0;       // runs pushed since the last backward pass (at the window's end)
+  std::size_t pass_depth_ = 0;    // earlier runs the last backward pass changed
+  bool started_ = false;          // a segment has been read
   bool exhausted_ = false;
   PlannerStatistics statistics_;
 };

@@ -50,6 +50,11 @@ struct Profile {
   //! (length, end velocity, 0, 0). The deceleration half is evaluated backwards from the end so
   //! that the end state is exact. Jerk is the one of the phase that contains t (left-closed).
   [[nodiscard]] ProfileState state_at(double t_s) const noexcept;
+
+  //! The instant at which the profile has covered s_m, the inverse of state_at's arc length (which
+  //! never falls): Newton's method on s(t) − s_m, safeguarded by bisection. s ≤ 0 gives 0, s ≥ length
+  //! the duration.
+  [[nodiscard]] double time_at(double s_m) const noexcept;
 };
 
 //! The time-optimal profile for the input: the highest peak speed whose acceleration and

@@ -27,7 +27,14 @@ struct TestMotion {
 //! exactly the thesis's coordinates on its rectangle [172.132, 272.132] × [−75, 75] mm. A motion that
 //! passes a point `robot` refuses (reach or joint limits) is shrunk about the rectangle's centre by
 //! steps of 10 % until it does not; throws stiffpath::Error when even 35 % of it does not fit.
-std::vector<TestMotion> test_motions(const compliance::GridBounds& region, const kinematics::Robot& robot);
+//! Then the motions off the grid lines (`grid_x_m`, `grid_y_m`: the distinct coordinates of the measurement
+//! points; empty: quarters of the rectangle), where interpolating models are least right: "y-mid-k", a y
+//! line midway between grid columns k and k + 1 (every mid-cell); "x-mid", an x line midway between the
+//! grid row nearest the middle and the next one up; "triangle-off", the triangle shifted right by a quarter
+//! of the first column spacing (at most 7.5 % of the width) and up by a quarter row spacing (at most 5 % of
+//! the height), so none of its sides lies along a grid line.
+std::vector<TestMotion> test_motions(const compliance::GridBounds& region, const kinematics::Robot& robot,
+                                     const std::vector<double>& grid_x_m = {}, const std::vector<double>& grid_y_m = {});
 //! The motion called `name` among `motions`; throws stiffpath::Error naming the known ones.
 const TestMotion& test_motion(const std::vector<TestMotion>& motions, const std::string& name);
 //! A user's path from a G-code file given as "FILE[:SIDES]" (sides 1 … 12, default 1), named by the
@@ -40,6 +47,7 @@ struct RunSpec {
   std::string motion = "y";
   double acceleration_g = 5.0;      //!< path acceleration limit, in g (jerk: default ramp time 5 ms)
   bool compensated = true;
+  std::string variant = "thesis";   //!< which compensation when compensated: "thesis" or "default" (compensator_factory)
 };
 
 //! Everything shared by the runs of a matrix. Documented defaults.
@@ -48,6 +56,13 @@ struct ExperimentOptions {
   std::vector<std::string> motions{"x", "y", "triangle"};  //!< of test_motions(); may be empty when paths are given
   std::vector<TestMotion> paths;       //!< users' own paths, run after the motions
   std::vector<double> accelerations_g{1, 2, 3, 4, 5};
+  //! Compensations run besides "without": "thesis" (the thesis's quasi-static bilinear method, drawn in the
+  //! figures) and "default" (what `run` does by default).
+  std::vector<std::string> variants{"thesis", "default"};
+  bool cg_lever = true;  //!< the CG's height tilts the platform (make_cg_lever); false: the CG at G
+  //! Compensate with C_true (+ the CG lever) itself instead of the fitted model: the error budget's case
+  //! without model error.
+  bool oracle_model = false;
   TrueComplianceOptions truth;         //!< C_true per robot data (table, rows, geometry)
   CampaignFitOptions fit;              //!< compensation model per robot data (virtual campaign + fit)
   compensation::CompensatorOptions compensator;  //!< gain etc.; `enabled` is set per run
@@ -68,7 +83,8 @@ struct RunResult {
 //! the robots with the same data and geometry, and the robot's test motions.
 struct TwinModels {
   std::shared_ptr<const compliance::Model> truth;
-  std::shared_ptr<const compliance::Model> compensation;
+  std::shared_ptr<const compliance::Model> compensation;          //!< the "thesis" variant's model
+  std::shared_ptr<const compliance::Model> compensation_default;  //!< the "default" variant's (null if not run)
   std::vector<TestMotion> motions;  //!< test_motions() in the robot's measured rectangle, then options.paths
 };
 TwinModels make_twin_models(const kinematics::Robot& robot, const ExperimentOptions& options = {});
@@ -78,11 +94,12 @@ TwinModels make_twin_models(const kinematics::Robot& robot, const ExperimentOpti
 RunResult run_once(const RunSpec& spec, const kinematics::Robot& robot, const TwinModels& models,
                    const ExperimentOptions& options = {});
 
-//! Runs the whole matrix robots × {without, with} × motions × accelerations (120 runs by default),
+//! Runs the whole matrix robots × {without, variants…} × motions × accelerations (180 runs by default),
 //! models made once per robot data.
 std::vector<RunResult> run_experiment(const ExperimentOptions& options = {});
 
-//! CSV header and one line per run (units in the column names, lengths in mm).
+//! CSV header and one line per run (units in the column names, lengths in mm; the last column names the
+//! compensation variant, empty without).
 std::string experiment_csv(const std::vector<RunResult>& results);
 
 //! A plain-text table (Markdown) with one line per robot × motion at the highest acceleration run:

@@ -11,23 +11,30 @@
 
 namespace stiffpath::simulation {
 
-//! How C_true is made. Defaults: the physics-based model fitted to the robot's own data, perturbed by ±10 %.
+//! How C_true is made. Defaults: the structural model fitted to the robot's own data, perturbed by ±10 %.
 struct TrueComplianceOptions {
-  //! Base field: a built-in or file model (compliance::load_model); empty = the physical model (order 1,
-  //! the smooth, symmetric, positive definite C = U⁻ᵀ D(p) U⁻¹ with the robot's geometry) fitted to all
-  //! of the robot's table, or the robot's model file when it names no table.
+  //! Base field: a built-in or file model (compliance::load_model); empty = `family` fitted to all of the
+  //! robot's table, or the robot's model file when it names no table.
   std::string base_model;
   //! Relative amplitude ε of the seeded smooth perturbation: C_true = S C S, S = diag(√sx, √sy), sx and sy
   //! quadratic polynomials over the grid with values in [1 − ε, 1 + ε]. Keeps C_true symmetric positive
   //! definite and makes it differ from anything the thesis's data say. 0 = the base field itself.
   double perturbation = 0.10;
   std::uint64_t seed = 1;  //!< seed of the perturbation's coefficients
+  //! "structural" (StructuralModel: virtual joints, of a family no compensation model has) or "physical"
+  //! (order 1, C = U⁻ᵀ D(p) U⁻¹: the family of the compensation's `physical` fit).
+  std::string family = "structural";
+  //! An already made base field (e.g. one structural fit shared by many seeds); overrides the above.
+  std::shared_ptr<const compliance::Model> base;
 };
 
 //! The true compliance of `robot` (m/N). Throws stiffpath::Error when the robot has no compliance data,
 //! for a bad base model (or one fitted for another geometry) or ε outside [0, 0.5].
 std::shared_ptr<const compliance::Model> make_true_compliance(const kinematics::Robot& robot,
                                                               const TrueComplianceOptions& options = {});
+//! The unperturbed base field of make_true_compliance (extrapolating beyond the measured rectangle).
+std::shared_ptr<const compliance::Model> make_true_base(const kinematics::Robot& robot,
+                                                        const TrueComplianceOptions& options = {});
 
 //! How the compensation model is obtained from C_true (the thesis's route, §2.3 and §4.2).
 struct CampaignFitOptions {

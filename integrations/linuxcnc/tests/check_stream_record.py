@@ -16,11 +16,13 @@ def read_joint_file(path):
     with open(path, "rb") as f:
         data = f.read()
     magic, version, record_bytes, rate_hz, count = struct.unpack_from("<8sIIdQ", data, 0)
-    if magic != b"SPJOINT\0" or version != 1 or record_bytes != 112:
-        sys.exit("FAIL: %s is not a version-1 stiffpath binary joint file" % path)
-    if len(data) != 64 + count * record_bytes:
+    layouts = {1: (64, 112), 2: (128, 120)}  # version: (header bytes, record bytes)
+    if magic != b"SPJOINT\0" or layouts.get(version, (0, 0))[1] != record_bytes:
+        sys.exit("FAIL: %s is not a version-1 or version-2 stiffpath binary joint file" % path)
+    header = layouts[version][0]
+    if len(data) != header + count * record_bytes:
         sys.exit("FAIL: %s: %d bytes for %d records" % (path, len(data), count))
-    return [struct.unpack_from("<3d", data, 64 + i * record_bytes)[1:] for i in range(count)]
+    return [struct.unpack_from("<3d", data, header + i * record_bytes)[1:] for i in range(count)]
 
 
 def main():

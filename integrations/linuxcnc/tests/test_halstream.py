@@ -39,11 +39,14 @@ for path, fmt in ((job_bin, "bin"), (job_csv, "csv")):
     result = run(stiffpath, "run", program, "--format", fmt, "-o", path)
     check(result.returncode == 0, "stiffpath run --format %s: %s" % (fmt, result.stderr))
 
-# The binary file by its layout: 64-byte header, 112-byte records of 13 doubles, i32 line, u8 laser.
+# The binary file by its layout. Version 2: a 128-byte header, 120-byte records of 14 doubles (t, θ, ω, α,
+# target, command, force, power), i32 line, u8 laser; version 1: 64 bytes, 112-byte records without power.
 with open(job_bin, "rb") as f:
     data = f.read()
-_, _, record_bytes, rate_hz, count = struct.unpack_from("<8sIIdQ", data, 0)
-records = [struct.unpack_from("<13diB", data, 64 + i * record_bytes) for i in range(count)]
+_, version, record_bytes, rate_hz, count = struct.unpack_from("<8sIIdQ", data, 0)
+header_bytes, layout = {1: (64, "<13diB"), 2: (128, "<14diB")}[version]
+records = [struct.unpack_from(layout, data, header_bytes + i * record_bytes) for i in range(count)]
+LASER = len(records[0]) - 1
 check(rate_hz == 2000.0 and count > 500, "the triangle at 2 kHz has %d samples at %g Hz" % (count, rate_hz))
 
 result = run(halstream, job_bin)
@@ -62,14 +65,15 @@ radians = stream_lines(run(halstream, job_bin, "--units", "rad").stdout)
 check(all(float(l[1]) == r[1] and float(l[2]) == r[2] for l, r in zip(radians, records)),
       "--units rad gives the file's doubles exactly")
 laser = stream_lines(run(halstream, job_bin, "--laser").stdout)
-check([int(l[3]) for l in laser[:-1]] == [r[14] for r in records], "--laser: the fourth column is the laser bit")
-check(0 < sum(r[14] for r in records) < count, "the job switches the laser")
+check([int(l[3]) for l in laser[:-1]] == [r[LASER] for r in records], "--laser: the fourth column is the laser bit")
+check(0 < sum(r[LASER] for r in records) < count, "the job switches the laser")
 
 # The CSV file carries the same angles to its printed digits.
 csv_lines = stream_lines(run(halstream, job_csv).stdout)
 with open(job_csv) as f:
-    header = f.readline().strip().split(",")
-    rows = [row.strip().split(",") for row in f]
+    lines_csv = [row.strip() for row in f if not row.startswith("#")]  # the robot's comment line first
+    header = lines_csv[0].split(",")
+    rows = [row.split(",") for row in lines_csv[1:]]
 c1, c2 = header.index("theta1_rad"), header.index("theta2_rad")
 check(len(csv_lines) == len(rows) + 1 == count + 1, "the CSV stream has a line per sample")
 check(all(abs(float(l[1]) - math.degrees(float(r[c1]))) <= 1e-12 and abs(float(l[2]) - math.degrees(float(r[c2]))) <= 1e-12

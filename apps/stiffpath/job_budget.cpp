@@ -1,0 +1,37 @@
+// Output budget of a planned job: refuse before writing a job beyond --max-samples or beyond the free disk space.
+#include "job_budget.hpp"
+
+#include <fmt/format.h>
+
+#include "stiffpath/core/error.hpp"
+#include "stiffpath/core/output_budget.hpp"
+
+namespace stiffpath::cli {
+
+void add_max_samples_flag(CLI::App* cmd, std::uint64_t& max_samples) {
+  cmd->add_option("--max-samples", max_samples,
+                  "Refuse a job with more samples than this (20 M: 2 h 46 min at 2 kHz); counted before writing")
+      ->capture_default_str()
+      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 50));
+}
+
+motion::PlanSize check_job_budget(const std::string& job, const motion::PlanOptions& options, std::uint64_t max_samples,
+                                  const std::string& output, const OutputEstimate& estimate, const char* noun, std::uint64_t extra_samples) {
+  motion::PlanSize size = motion::measure_plan(job, options);
+  size.samples += extra_samples;  // what filters after the planner add (their delay)
+  size.duration_s += static_cast<double>(extra_samples) / options.rate_hz;
+  const double bytes = static_cast<double>(size.samples) * estimate.bytes_per_sample + estimate.header_bytes;
+  if (size.samples > max_samples) {
+    throw Error(SourceLocation{job}, fmt::format("the {} has {} samples ({:.1f} s at {:g} Hz, about {} of {}), more than "
+                                                 "the cap of {}; raise it with --max-samples",
+                                                 noun, size.samples, size.duration_s, options.rate_hz,
+                                                 core::human_bytes(bytes), estimate.kind, max_samples));
+  }
+  core::check_free_space(output, bytes,
+                         fmt::format("the {} has {} samples ({:.1f} s at {:g} Hz); free some space, write elsewhere "
+                                     "or shorten the program",
+                                     noun, size.samples, size.duration_s, options.rate_hz));
+  return size;
+}
+
+}  // namespace stiffpath::cli

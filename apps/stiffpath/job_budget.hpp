@@ -1,0 +1,34 @@
+// Output budget of a planned job: its sample count before writing, a --max-samples cap and the free disk space.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "stiffpath/motion/trajectory_stream.hpp"
+
+namespace stiffpath::cli {
+
+//! Default cap on the samples of one job: 20 million, 2 h 46 min 40 s at 2 kHz.
+inline constexpr std::uint64_t default_max_samples = 20'000'000;
+
+//! Adds "--max-samples N" (default 20 M) to a subcommand that plans G-code.
+void add_max_samples_flag(CLI::App* cmd, std::uint64_t& max_samples);
+
+//! How big one job's output is: bytes per sample, fixed header bytes, and the format's name for messages.
+struct OutputEstimate {
+  double bytes_per_sample = 0.0;
+  double header_bytes = 0.0;
+  const char* kind = "CSV";
+};
+
+//! Plans `job` without sampling it (motion::measure_plan) and refuses, before anything is written, a
+//! job with more samples than `max_samples`, or whose output would not fit on the file system
+//! holding `output` (empty or "-": not checked). The refusal names the sample count, the duration,
+//! the estimated size and how to raise the cap; `noun` names the job ("plan", "job"). Returns the size.
+motion::PlanSize check_job_budget(const std::string& job, const motion::PlanOptions& options, std::uint64_t max_samples,
+                                  const std::string& output, const OutputEstimate& estimate, const char* noun,
+                                  std::uint64_t extra_samples = 0);
+
+}  // namespace stiffpath::cli

@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# Runs every libFuzzer harness of a fuzz build for a bounded time, seeded from the project's data; prints executions.
+# usage: scripts/fuzz.sh BUILD_DIR SECONDS_PER_HARNESS [HARNESS...]   (default: all harnesses)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=${1:?build dir, e.g. build/fuzz}
+seconds=${2:-20}
+shift 2 || true
+harnesses=("$@")
+[ ${#harnesses[@]} -gt 0 ] || harnesses=(gcode csv displacement_table campaign repeatability joint_file robot_json model_json image_metadata)
+
+# Seed folders per harness: the shipped data, the test inputs and the malformed-input corpus.
+seeds() {
+  case "$1" in
+    gcode) echo examples tests/data/cam tests/data/gcode_bad tests/data/bad/gcode ;;
+    csv) echo data/thesis tests/data/bad/displacement_table tests/data/bad/campaign tests/data/bad/repeatability ;;
+    displacement_table) echo data/thesis tests/data/bad/displacement_table ;;
+    campaign) echo tests/data/fuzz_seeds/campaign tests/data/bad/campaign ;;
+    repeatability) echo data/thesis tests/data/bad/repeatability ;;
+    joint_file) echo tests/data/fuzz_seeds/joint_file tests/data/bad/joints ;;
+    robot_json) echo data/robots tests/data/robots tests/data/bad/robot ;;
+    model_json) echo tests/data/fuzz_seeds/model_json tests/data/bad/model ;;
+    image_metadata) echo tests/data/fuzz_seeds/image_metadata tests/data/fuzz_regressions/image_metadata tests/data/bad/image ;;
+  esac
+}
+
+mkdir -p "$build/findings"
+status=0
+for h in "${harnesses[@]}"; do
+  corpus="$build/corpus/$h"
+  mkdir -p "$corpus"
+  dirs=()
+  for d in $(seeds "$h"); do [ -d "$d" ] && dirs+=("$d"); done
+  log="$build/findings/$h.log"
+  set +e
+  ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    "$build/fuzz/fuzz_$h" -max_total_time="$seconds" -max_len=8192 -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+    -artifact_prefix="$build/findings/$h-" "$corpus" "${dirs[@]}" >"$log" 2>&1
+  rc=$?
+  set -e
+  execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo "?")
+  if [ $rc -eq 0 ]; then
+    echo "fuzz_$h: ${execs} executions in ${seconds} s, corpus $(ls "$corpus" | wc -l) inputs, no finding"
+  else
+    echo "fuzz_$h: FINDING (exit $rc) after ${execs} executions; see $log and $build/findings/$h-*" >&2
+    grep -m5 -E 'ERROR|runtime error|SUMMARY|terminate' "$log" >&2 || true
+    status=1
+  fi
+done
+exit $status

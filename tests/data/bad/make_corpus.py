@@ -1,0 +1,211 @@
+#!/usr/bin/env python3
+"""Writes the malformed-input corpus (tests/data/bad/<reader>/) and its expect.txt files.
+
+Each case puts one bad value at a known place of an otherwise valid file, so the expected location
+(line:column, or the record number of a binary file) and the offending text are known independently
+of the tool's output. usage: make_corpus.py STIFFPATH_CLI   (the CLI writes the valid joint and model
+files that some cases start from).
+"""
+import json
+import os
+import struct
+import subprocess
+import sys
+import tempfile
+import zlib
+
+here = os.path.dirname(os.path.abspath(__file__))
+
+
+def write(reader, name, data, where, value):
+    folder = os.path.join(here, reader)
+    os.makedirs(folder, exist_ok=True)
+    mode = "wb" if isinstance(data, bytes) else "w"
+    with open(os.path.join(folder, name), mode) as f:
+        f.write(data)
+    expect[reader].append(f"{name}\t{where}\t{value}")
+
+
+def csv_case(reader, name, header, rows, line, column_name, value, dup=False):
+    """rows: list of dicts; the cell (line counted from 1 = header) of column_name becomes value."""
+    names = header.split(",")
+    if dup:
+        names.append(column_name)
+    lines = [",".join(names)]
+    for r in rows:
+        lines.append(",".join(r.get(n, "") for n in names))
+    if dup:
+        col = len(",".join(names[:-1])) + 2
+        write(reader, name, "\n".join(lines) + "\n", f"1:{col}", column_name)
+        return
+    cells = lines[line - 1].split(",")
+    i = names.index(column_name)
+    cells[i] = value
+    lines[line - 1] = ",".join(cells)
+    col = len(",".join(cells[:i])) + (2 if i > 0 else 1)
+    write(reader, name, "\n".join(lines) + "\n", f"{line}:{col}", value)
+
+
+expect = {}
+
+
+def tables():
+    expect["displacement_table"] = []
+    h = "mechanism,direction,point,x_mm,y_mm,step,force_kgf,F_N,F_nominal_N,dx_mm,dy_mm"
+    rows = [dict(mechanism="OC", direction="+x", point="p1", x_mm="200", y_mm="0", step=str(k), force_kgf=str(5 * k),
+                 F_N=f"{49.03 * k:.2f}", F_nominal_N=str(50 * k), dx_mm=f"{0.01 * k:.3f}", dy_mm="0.001")
+            for k in (1, 2, 3)]
+    t = "displacement_table"
+    csv_case(t, "dx_1e300.csv", h, rows, 3, "dx_mm", "1e300")
+    csv_case(t, "dy_1e200.csv", h, rows, 2, "dy_mm", "-1e200")
+    csv_case(t, "x_1e308.csv", h, rows, 4, "x_mm", "1e308")
+    csv_case(t, "force_1e400.csv", h, rows, 2, "F_N", "1e400")
+    csv_case(t, "force_nan.csv", h, rows, 3, "F_N", "nan")
+    csv_case(t, "dx_200_mm.csv", h, rows, 2, "dx_mm", "200")
+    csv_case(t, "duplicate_column.csv", h, rows, 1, "dx_mm", None, dup=True)
+
+    expect["campaign"] = []
+    h = "point,x_mm,y_mm,direction,step,reading,force_kgf,Ux_mm,Uy_mm,Uz_mm,Lx_mm,Ly_mm,Lz_mm"
+    rows = [dict(point="P", x_mm="200", y_mm="0", direction="+x", step=str(k), reading="1", force_kgf=str(0.11 if k == 0 else 5 * k),
+                 Ux_mm=f"{200 + 0.16 * k:.3f}", Uy_mm="0.000", Uz_mm="160.000", Lx_mm="200.000", Ly_mm="0.000", Lz_mm="0.000")
+            for k in (0, 1, 2)]
+    t = "campaign"
+    csv_case(t, "ux_1e300.csv", h, rows, 3, "Ux_mm", "1e300")
+    csv_case(t, "lz_1e13.csv", h, rows, 4, "Lz_mm", "1e13")
+    csv_case(t, "force_inf.csv", h, rows, 2, "force_kgf", "inf")
+    csv_case(t, "duplicate_column.csv", h, rows, 1, "Uy_mm", None, dup=True)
+
+    expect["repeatability"] = []
+    h = "mechanism,point,x_mm,y_mm,trial,err_x_mm,err_y_mm"
+    rows = [dict(mechanism="OC", point="p1", x_mm="200", y_mm="0", trial=str(k), err_x_mm=f"{0.01 * k:.3f}", err_y_mm="0.002")
+            for k in (1, 2, 3)]
+    t = "repeatability"
+    csv_case(t, "err_1e308.csv", h, rows, 3, "err_x_mm", "1e308")
+    csv_case(t, "x_nan.csv", h, rows, 2, "x_mm", "nan")
+    csv_case(t, "duplicate_column.csv", h, rows, 1, "err_y_mm", None, dup=True)
+
+
+def position(text, needle, occurrence=1):
+    at = -1
+    for _ in range(occurrence):
+        at = text.index(needle, at + 1)
+    line = text.count("\n", 0, at) + 1
+    return f"{line}:{at - (text.rfind(chr(10), 0, at) + 1) + 1}"
+
+
+def json_cases(reader, base_text, key, bad_number, named=None):
+    expect[reader] = []
+    # A key given twice: the second one is refused, at its own position.
+    lines = base_text.split("\n")
+    i = next(k for k, l in enumerate(lines) if l.strip().startswith(f'"{key}"'))
+    dup = lines[:i + 1] + [lines[i]] + lines[i + 1:]
+    text = "\n".join(dup)
+    write(reader, "duplicate_key.json", text, position(text, f'"{key}"', 2), key)
+    # A number beyond double range.
+    v = lines[i].split(":", 1)[1].strip().rstrip(",")
+    text = base_text.replace(lines[i], lines[i].replace(v, "1e400", 1), 1)
+    write(reader, "number_1e400.json", text, position(text, "1e400"), "1e400")
+    text = base_text.replace(lines[i], lines[i].replace(v, bad_number, 1), 1)
+    write(reader, f"{key}_{bad_number.replace('-', 'minus')}.json", text, position(text, f'"{key}"'), named or bad_number)
+
+
+def robots():
+    with open(os.path.join(here, "..", "..", "..", "data", "robots", "oc-gu.json")) as f:
+        # Its data by their built-in names, so the copy in tests/data/bad/robot/ finds them.
+        json_cases("robot", f.read().replace('"../thesis/', '"builtin:thesis/'), "moving_mass_kg", "1e300", "RANGE: 1e+300")
+
+
+def model(cli, tmp):
+    path = os.path.join(tmp, "model.json")
+    subprocess.run([cli, "fit", "-o", path], check=True, stdout=subprocess.DEVNULL)
+    with open(path) as f:
+        text = f.read()
+    json_cases("model", text, "order", "1e300", "RANGE: 1e+300")
+    # A coefficient of 1e300: the compliance it gives over the measured region is refused at D_um_per_N.
+    first = text.index("[", text.index('"D_um_per_N"') + 15) + 1
+    value_at = first + len(text[first:]) - len(text[first:].lstrip())
+    end = text.index(",", value_at)
+    bad = text[:value_at] + "1e300" + text[end:]
+    write("model", "compliance_1e300.json", bad, position(bad, '"D_um_per_N"'), "RANGE: the model's compliance")
+
+
+def joints(cli, tmp):
+    expect["joints"] = []
+    job = os.path.join(tmp, "job.gcode")
+    with open(job, "w") as f:
+        f.write("G0 X200 Y0\nM3 S500\nG1 X201 F600\nM5\n")
+    csv_path, bin_path = os.path.join(tmp, "j.csv"), os.path.join(tmp, "j.bin")
+    subprocess.run([cli, "run", job, "-o", csv_path], check=True, stdout=subprocess.DEVNULL)
+    subprocess.run([cli, "run", job, "-o", bin_path, "--format", "bin"], check=True, stdout=subprocess.DEVNULL)
+    with open(csv_path) as f:
+        lines = f.read().split("\n")[:8]
+    header = lines[0].split(",")
+
+    def cell(name, line, value, newtext=None):
+        rows = [l.split(",") for l in lines]
+        i = header.index(value[0])
+        rows[line - 1][i] = value[1]
+        text = "\n".join(",".join(r) for r in rows) + "\n"
+        col = len(",".join(rows[line - 1][:i])) + (2 if i > 0 else 1)
+        write("joints", name, text, f"{line}:{col}", value[2])
+
+    t3 = float(lines[2].split(",")[0])
+    cell("time_gap_200_s.csv", 4, ("t_s", f"{t3 + 200:.6f}", "is 200 s after"))
+    cell("time_backwards.csv", 4, ("t_s", "0.000000", "0"))
+    cell("theta_1e300.csv", 5, ("theta1_rad", "1e300", "1e300"))
+    cell("force_nan.csv", 3, ("fx_n", "nan", "nan"))
+    dup = [lines[0] + ",t_s"] + [l + ",0" for l in lines[1:] if l]
+    write("joints", "duplicate_column.csv", "\n".join(dup) + "\n", f"1:{len(lines[0]) + 2}", "t_s")
+
+    with open(bin_path, "rb") as f:
+        data = bytearray(f.read())
+    head, rec = 64, 112
+
+    def record(k):  # 1-based
+        return head + (k - 1) * rec
+
+    gap = bytearray(data)
+    t = struct.unpack_from("<d", gap, record(3))[0]
+    struct.pack_into("<d", gap, record(3), t + 1e6)
+    write("joints", "time_gap_1e6_s.bin", bytes(gap), "record 3", "t_s")
+    nan = bytearray(data)
+    struct.pack_into("<d", nan, record(2) + 8, float("nan"))
+    write("joints", "theta_nan.bin", bytes(nan), "record 2", "theta1_rad")
+    huge = bytearray(data)
+    struct.pack_into("<d", huge, record(4) + 8 * 11, 1e300)
+    write("joints", "force_1e300.bin", bytes(huge), "record 4", "1e+300")
+    write("joints", "truncated.bin", bytes(data[:record(3) + 50]), "record 3", "truncated")
+    rate = bytearray(data)
+    struct.pack_into("<d", rate, 16, 0.0)
+    write("joints", "rate_zero.bin", bytes(rate), "header", "rate 0 Hz")
+
+
+def png_chunk(kind, body):
+    return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body) & 0xFFFFFFFF)
+
+
+def images():
+    expect["image"] = []
+    sig = b"\x89PNG\r\n\x1a\n"
+    for name, w, h in (("png_1e5_by_1e5.png", 100000, 100000), ("png_width_2e9.png", 2_000_000_000, 1)):
+        ihdr = png_chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 0, 0, 0, 0))
+        idat = png_chunk(b"IDAT", zlib.compress(b"\x00" * 64))
+        write("image", name, sig + ihdr + idat + png_chunk(b"IEND", b""), "-", str(w))
+    write("image", "not_an_image.png", b"this is text, not a PNG\n", "-", "not a readable image")
+
+
+def main():
+    cli = sys.argv[1]
+    tables()
+    robots()
+    with tempfile.TemporaryDirectory() as tmp:
+        model(cli, tmp)
+        joints(cli, tmp)
+    images()
+    for reader, lines in expect.items():
+        with open(os.path.join(here, reader, "expect.txt"), "w") as f:
+            f.write("# file<TAB>where (line:column, record N, header or - for the file)<TAB>text the message must name\n")
+            f.write("\n".join(lines) + "\n")
+
+
+main()

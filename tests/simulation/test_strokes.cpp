@@ -1,0 +1,174 @@
+// Streaming simulation: strokes partition the mark, RunMeter sums them, refuses line metrics where a stroke is not a line.
+#include <gtest/gtest.h>
+
+#include <Eigen/LU>
+#include <cmath>
+#include <sstream>
+
+#include "stiffpath/core/error.hpp"
+#include "stiffpath/motion/limits.hpp"
+#include "stiffpath/motion/trajectory_stream.hpp"
+#include "stiffpath/simulation/run_metrics.hpp"
+#include "stiffpath/simulation/twin_models.hpp"
+
+namespace stiffpath::simulation {
+namespace {
+
+// The uncompensated joint stream of a G-code program on the thesis robot at 2 g (IK of each 2 kHz sample).
+std::vector<compensation::JointCommand> joints_of(const std::string& gcode) {
+  const auto five_bar = kinematics::load_robot("oc-gu").five_bar();
+  motion::PlanOptions plan;
+  plan.limits.max_acceleration_m_s2 = 2 * 9.80665;
+  plan.limits.max_jerk_m_s3 = motion::default_jerk_m_s3(plan.limits.max_acceleration_m_s2);
+  std::istringstream program(gcode);
+  motion::TrajectoryStream stream(program, "test", plan);
+  std::vector<compensation::JointCommand> out;
+  while (const auto s = stream.next()) {
+    compensation::JointCommand c;
+    c.t_s = s->t_s;
+    c.q_rad = five_bar.inverse(s->position_m);
+    c.qd_rad_s = five_bar.jacobian(c.q_rad).inverse() * s->velocity_m_s;
+    c.target_m = s->position_m;
+    c.laser_on = s->laser_on;
+    out.push_back(c);
+  }
+  return out;
+}
+
+JointSource source_of(const std::vector<compensation::JointCommand>& joints) {
+  return [&joints, i = std::size_t{0}]() mutable -> std::optional<compensation::JointCommand> {
+    if (i == joints.size()) return std::nullopt;
+    return joints[i++];
+  };
+}
+
+// Two lines of 40 and 30 mm with a travel move between (G61: exact stops, so each is one straight stroke).
+const char* kTwoLines =
+    "G21 G90 G61\nG0 X190 Y-40\nM3 S1000\nG1 X230 Y-40 F60000\nM5\nG0 X200 Y20\nM3 S1000\nG1 X200 Y50\nM5\nM2\n";
+
+TEST(Strokes, StrokesPartitionTheWholeMark) {
+  const auto robot = kinematics::load_robot("oc-gu");
+  const auto truth = make_true_compliance(robot);
+  const auto joints = joints_of(kTwoLines);
+  std::vector<Stroke> strokes;
+  const SimulationResult streamed =
+      simulate(source_of(joints), robot, truth, {}, [&](const Stroke& s) { strokes.push_back(s); });
+  const SimulationResult whole = simulate(source_of(joints), robot, truth);
+  EXPECT_TRUE(streamed.marked.empty());
+  ASSERT_EQ(strokes.size(), 2U);
+  EXPECT_EQ(streamed.strokes, 2U);
+  EXPECT_EQ(streamed.peak_deflection_m, whole.peak_deflection_m);
+  std::vector<Vec2> marked, commanded;
+  for (std::size_t k = 0; k < strokes.size(); ++k) {
+    EXPECT_EQ(strokes[k].index, k);
+    EXPECT_LT(strokes[k].start_s, strokes[k].end_s);
+    marked.insert(marked.end(), strokes[k].marked.begin(), strokes[k].marked.end());
+    commanded.insert(commanded.end(), strokes[k].commanded.begin(), strokes[k].commanded.end());
+  }
+  EXPECT_LT(strokes[0].end_s, strokes[1].start_s);
+  EXPECT_EQ(marked, whole.marked);
+  EXPECT_EQ(commanded, whole.commanded);
+  // Each stroke's command runs from its line's start to its end (mm in the G-code), up to the distance
+  // covered within one 0.5 ms sample of a jerk-limited start (j·Δt³/6 ≈ 0.08 µm at 2 g).
+  EXPECT_NEAR((strokes[0].commanded.front() - Vec2(0.190, -0.040)).norm(), 0.0, 1e-6);
+  EXPECT_NEAR((strokes[0].commanded.back() - Vec2(0.230, -0.040)).norm(), 0.0, 1e-6);
+  EXPECT_NEAR((strokes[1].commanded.front() - Vec2(0.200, 0.020)).norm(), 0.0, 1e-6);
+  EXPECT_NEAR((strokes[1].commanded.back() - Vec2(0.200, 0.050)).norm(), 0.0, 1e-6);
+}
+
+TEST(Strokes, MeterSumsLengthsAndTakesTheLargestDeviations) {
+  const auto robot = kinematics::load_robot("oc-gu");
+  const auto truth = make_true_compliance(robot);
+  const auto joints = joints_of(kTwoLines);
+  RunMeter meter(1);
+  const SimulationResult run = simulate(source_of(joints), robot, truth, {}, meter.sink());
+  const RunMetrics total = meter.totals(run);
+  ASSERT_EQ(meter.strokes().size(), 2U);
+  const RunMetrics& a = meter.strokes()[0].metrics;
+  const RunMetrics& b = meter.strokes()[1].metrics;
+  EXPECT_NEAR(a.commanded_length_m, 0.040, 1e-7);
+  EXPECT_NEAR(b.commanded_length_m, 0.030, 1e-7);
+  EXPECT_NEAR(total.commanded_length_m, 0.070, 2e-7);
+  EXPECT_NEAR(total.length_m, a.length_m + b.length_m, 1e-15);
+  EXPECT_NEAR(total.length_m, 0.070, 0.5e-3);  // the mark of an exact-stop line: within the tip's deflection
+  EXPECT_EQ(total.max_deviation_m, std::max(a.max_deviation_m, b.max_deviation_m));
+  EXPECT_EQ(total.path_accuracy_m, std::max(a.path_accuracy_m, b.path_accuracy_m));
+  EXPECT_EQ(total.strokes, 2U);
+  EXPECT_EQ(total.line_strokes, 2U);
+  EXPECT_EQ(total.corners, 0U);
+  EXPECT_EQ(total.peak_deflection_m, run.peak_deflection_m);
+}
+
+// One stroke: the meter's totals are measure_run's numbers on the whole mark.
+TEST(Strokes, OneStrokeJobGivesMeasureRunsNumbers) {
+  const auto robot = kinematics::load_robot("oc-gu");
+  const auto truth = make_true_compliance(robot);
+  const auto joints = joints_of(
+      "G21 G90 G61\nG0 X187.132 Y-60\nM3 S1000\nG1 X257.132 Y-60 F120000\nG1 X222.132 Y60\nG1 X187.132 Y-60\nM5\n");
+  RunMeter meter(3);
+  const RunMetrics streamed = meter.totals(simulate(source_of(joints), robot, truth, {}, meter.sink()));
+  const RunMetrics whole = measure_run(simulate(source_of(joints), robot, truth), 3);
+  EXPECT_EQ(streamed.length_m, whole.length_m);
+  EXPECT_EQ(streamed.length_error_m, whole.length_error_m);
+  EXPECT_EQ(streamed.deviation_area_m2, whole.deviation_area_m2);
+  EXPECT_EQ(streamed.max_deviation_m, whole.max_deviation_m);
+  EXPECT_EQ(streamed.path_accuracy_m, whole.path_accuracy_m);
+  EXPECT_EQ(streamed.corners, 2U);  // the triangle's two interior exact stops
+  EXPECT_EQ(streamed.cornering_round_off_m, whole.cornering_round_off_m);
+  EXPECT_EQ(streamed.cornering_overshoot_m, whole.cornering_overshoot_m);
+  EXPECT_EQ(streamed.residual_vibration_m, whole.residual_vibration_m);
+}
+
+// With --sides 3 a straight line cannot be three sides: its line metrics are refused with the reason,
+// the triangle's are kept, and the totals are the triangle's alone.
+TEST(Strokes, AStrokeThatIsNotTheGivenShapeIsRefusedNotMeasured) {
+  const auto robot = kinematics::load_robot("oc-gu");
+  const auto truth = make_true_compliance(robot);
+  const auto joints = joints_of(
+      "G21 G90 G61\nG0 X187.132 Y-60\nM3 S1000\nG1 X257.132 Y-60 F120000\nG1 X222.132 Y60\nG1 X187.132 Y-60\nM5\n"
+      "G0 X190 Y40\nM3 S1000\nG1 X230 Y40\nM5\n");
+  RunMeter meter(3);
+  const RunMetrics total = meter.totals(simulate(source_of(joints), robot, truth, {}, meter.sink()));
+  ASSERT_EQ(meter.strokes().size(), 2U);
+  EXPECT_TRUE(meter.strokes()[0].refusal.empty()) << meter.strokes()[0].refusal;
+  EXPECT_NE(meter.strokes()[1].refusal.find("not 3 straight sides"), std::string::npos) << meter.strokes()[1].refusal;
+  EXPECT_EQ(total.line_strokes, 1U);
+  EXPECT_EQ(total.length_m, meter.strokes()[0].metrics.length_m);
+  EXPECT_TRUE(meter.strokes()[1].path_accuracy);  // AT_p needs no sides
+}
+
+// Without a number of sides each stroke is measured as its command's sharp corners plus one: the
+// triangle as three sides (closed), the line as one, with the numbers --sides would give each.
+TEST(Strokes, SidesAreInferredFromEachStrokesCorners) {
+  const auto robot = kinematics::load_robot("oc-gu");
+  const auto truth = make_true_compliance(robot);
+  const auto joints = joints_of(
+      "G21 G90 G61\nG0 X187.132 Y-60\nM3 S1000\nG1 X257.132 Y-60 F120000\nG1 X222.132 Y60\nG1 X187.132 Y-60\nM5\n"
+      "G0 X190 Y40\nM3 S1000\nG1 X230 Y40\nM5\n");
+  RunMeter inferred(0), triangle(3), line(1);
+  (void)simulate(source_of(joints), robot, truth, {}, [&](const Stroke& s) {
+    inferred.add(s);
+    triangle.add(s);
+    line.add(s);
+  });
+  ASSERT_EQ(inferred.strokes().size(), 2U);
+  EXPECT_EQ(inferred.strokes()[0].sides, 3);
+  EXPECT_EQ(inferred.strokes()[1].sides, 1);
+  EXPECT_EQ(inferred.strokes()[0].metrics.length_m, triangle.strokes()[0].metrics.length_m);
+  EXPECT_EQ(inferred.strokes()[0].metrics.max_deviation_m, triangle.strokes()[0].metrics.max_deviation_m);
+  EXPECT_EQ(inferred.strokes()[1].metrics.length_m, line.strokes()[1].metrics.length_m);
+  // The triangle's perimeter: 70 + 2·√(35² + 120²) = 320 mm.
+  EXPECT_NEAR(inferred.strokes()[0].metrics.commanded_length_m, 0.070 + 2 * std::hypot(0.035, 0.120), 5e-6);
+}
+
+TEST(Strokes, AJobThatNeverFiresTheLaserHasNothingToMeasure) {
+  const auto robot = kinematics::load_robot("oc-gu");
+  const auto joints = joints_of("G21 G90\nG0 X190 Y-40\nG1 X230 Y-40 F60000\n");
+  RunMeter meter(1);
+  const auto run = simulate(source_of(joints), robot, make_true_compliance(robot), {}, meter.sink());
+  EXPECT_EQ(run.strokes, 0U);
+  EXPECT_THROW((void)meter.totals(run), Error);
+}
+
+}  // namespace
+}  // namespace stiffpath::simulation
