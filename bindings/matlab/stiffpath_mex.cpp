@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "stiffpath/compensation/compensator.hpp"
+#include "stiffpath/compensation/run_filters.hpp"
 #include "stiffpath/compliance/model_factory.hpp"
 #include "stiffpath/compliance/model_file.hpp"
 #include "stiffpath/core/error.hpp"
@@ -138,7 +139,7 @@ void compliance(int, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
   need(nrhs, 3, "C = stiffpath('compliance', model, p_m)  % 2×2×N in m/N");
   const auto loaded = model_arg(prhs[1]);
   const Matrix p = matrix_arg(prhs[2], "p_m", 2, 2);
-  const mwSize dims[3] = {2, 2, p.rows};
+  const mwSize dims[3] = {2, 2, static_cast<mwSize>(p.rows)};
   plhs[0] = mxCreateNumericArray(3, dims, mxDOUBLE_CLASS, mxREAL);
   double* c = mxGetPr(plhs[0]);
   for (std::size_t i = 0; i < p.rows; ++i) {
@@ -204,27 +205,65 @@ class MatrixWriter final : public stiffpath::job::JointWriter {
   std::vector<stiffpath::compensation::JointCommand> commands;
 };
 
-// Q = stiffpath('compensate', robot, model, T [, gain]): T N×7..10 [t x y vx vy ax ay (jx jy laser)] →
-// N×11 [t θ1 θ2 ω1 ω2 α1 α2 x_cmd y_cmd Δx Δy] (SI), as `stiffpath run`; the first refused row is an error.
+// A number or text field of an options struct, or `fallback` when the field is absent.
+double number_field(const mxArray* options, const char* name, double fallback) {
+  const mxArray* f = options != nullptr ? mxGetField(options, 0, name) : nullptr;
+  if (f == nullptr) return fallback;
+  if (!mxIsDouble(f) || mxIsComplex(f) || mxGetNumberOfElements(f) != 1) {
+    throw UsageError(std::string("options.") + name + " must be a real number");
+  }
+  return mxGetScalar(f);
+}
+
+std::string text_field(const mxArray* options, const char* name, const std::string& fallback) {
+  const mxArray* f = options != nullptr ? mxGetField(options, 0, name) : nullptr;
+  return f == nullptr ? fallback : text_arg(f, (std::string("options.") + name).c_str());
+}
+
+// Q = stiffpath('compensate', robot, model, T [, options]): T N×7..10 [t x y vx vy ax ay (jx jy laser)] →
+// N×11 [t θ1 θ2 ω1 ω2 α1 α2 x_cmd y_cmd Δx Δy] (SI), as `stiffpath run` with its defaults (dynamic compensation,
+// reference smoothed over 8 ms); the first refused row is an error. options: a struct with any of gain (1),
+// method ('dynamic' or 'quasi-static'), damping_ratio (0.05), smooth_s (0.008; 0 = off), shaper ('none', 'zv',
+// 'zvd'), or a number: the gain. The filters lengthen the job by their delay (more rows than T).
 void compensate(int, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
   if (nrhs != 4 && nrhs != 5) {
-    throw UsageError("usage: Q = stiffpath('compensate', robot, model, T [, gain])  % model '' = the robot's own");
+    throw UsageError("usage: Q = stiffpath('compensate', robot, model, T [, options])  % model '' = the robot's own");
   }
   const auto robot = stiffpath::kinematics::load_robot(text_arg(prhs[1], "robot"));
   const std::string model_name = text_arg(prhs[2], "model");
   stiffpath::compliance::ModelRequest request;
   request.model = model_name;
   auto loaded = stiffpath::compliance::load_robot_model(robot, request);
-  double gain = 1.0;
+  const mxArray* options = nullptr;
+  stiffpath::compensation::CompensatorOptions comp{1.0, true, true};
+  comp.method = stiffpath::compensation::Method::dynamic;
+  stiffpath::compensation::RunFilterOptions filter;
   if (nrhs == 5) {
-    if (!mxIsDouble(prhs[4]) || mxGetNumberOfElements(prhs[4]) != 1) throw UsageError("gain must be a number");
-    gain = mxGetScalar(prhs[4]);
+    if (mxIsStruct(prhs[4]) && mxGetNumberOfElements(prhs[4]) == 1) {
+      options = prhs[4];
+    } else if (mxIsDouble(prhs[4]) && mxGetNumberOfElements(prhs[4]) == 1) {
+      comp.gain = mxGetScalar(prhs[4]);
+    } else {
+      throw UsageError("options must be a struct (gain, method, damping_ratio, smooth_s, shaper) or the gain");
+    }
   }
-  const stiffpath::compensation::Compensator compensator(
-      robot, std::shared_ptr<const stiffpath::compliance::Model>(std::move(loaded.model)), {gain, true, true});
-  MatrixSource source(matrix_arg(prhs[3], "T", 7, 10));
+  comp.gain = number_field(options, "gain", comp.gain);
+  comp.method = stiffpath::compensation::parse_method(text_field(options, "method", "dynamic"));
+  comp.damping_ratio = number_field(options, "damping_ratio", comp.damping_ratio);
+  filter.smooth_s = number_field(options, "smooth_s", filter.smooth_s);
+  filter.shaper = stiffpath::compensation::parse_filter_kind(text_field(options, "shaper", "none"));
+  filter.damping_ratio = comp.damping_ratio;
+  const std::shared_ptr<const stiffpath::compliance::Model> model(std::move(loaded.model));
+  const stiffpath::compensation::Compensator compensator(robot, model, comp);
+  const Matrix trajectory = matrix_arg(prhs[3], "T", 7, 10);
+  auto region = stiffpath::compliance::GridBounds::none();
+  for (std::size_t i = 0; i < trajectory.rows; ++i) region.include(Vec2(trajectory(i, 1), trajectory(i, 2)));
+  stiffpath::compensation::FilterChain filters = stiffpath::compensation::make_run_filters(
+      stiffpath::motion::default_sample_rate_hz, filter, model, robot.moving_mass_kg, region);
+  MatrixSource source(trajectory);
   MatrixWriter writer;
-  stiffpath::job::run_job(source, compensator, &writer, "T", stiffpath::motion::default_sample_rate_hz);
+  stiffpath::job::run_job(source, compensator, &writer, "T", stiffpath::motion::default_sample_rate_hz,
+                          stiffpath::job::AccelerationSource::analytic, {}, &filters);
   const std::size_t n = writer.commands.size();
   plhs[0] = new_matrix(n, 11);
   double* q = mxGetPr(plhs[0]);

@@ -56,6 +56,38 @@ py::array_t<double> points_array(const std::vector<Vec2>& points) {
   return out;
 }
 
+void ensure_record_dtypes() {
+  static bool registered = false;  // guarded by the GIL
+  if (registered) return;
+  PYBIND11_NUMPY_DTYPE(TrajectoryRow, t_s, p_m, v_m_s, a_m_s2, j_m_s3, laser, power, line);
+  PYBIND11_NUMPY_DTYPE(JointRow, t_s, q_rad, qd_rad_s, qdd_rad_s2, target_m, command_m, force_N, deflection_m, laser,
+                       power, outside_grid, line);
+  registered = true;
+}
+
+namespace {
+
+template <class Row>
+py::array_t<Row, py::array::c_style> records(const py::handle& value, const char* what, const char* dtype_name) {
+  ensure_record_dtypes();
+  auto array = py::array_t<Row, py::array::c_style>::ensure(value);
+  if (!array) {
+    PyErr_Clear();
+    throw py::type_error(fmt::format("{}: expected a structured array of dtype stiffpath.{}", what, dtype_name));
+  }
+  return array;
+}
+
+}  // namespace
+
+py::array_t<TrajectoryRow, py::array::c_style> trajectory_records(const py::handle& value, const char* what) {
+  return records<TrajectoryRow>(value, what, "trajectory_dtype");
+}
+
+py::array_t<JointRow, py::array::c_style> joint_records(const py::handle& value, const char* what) {
+  return records<JointRow>(value, what, "joints_dtype");
+}
+
 std::string describe_point(const Vec2& p_m) {
   return fmt::format("(x = {:.6g} mm, y = {:.6g} mm)", p_m.x() * 1e3, p_m.y() * 1e3);
 }

@@ -60,8 +60,18 @@ struct JointRow {
   double force_N[2];
   double deflection_m[2];
   bool laser;
+  double power;
   bool outside_grid;
   std::int32_t line;
 };
+
+//! Registers the record dtypes with pybind11 on first use (this imports NumPy, which `import stiffpath` does not:
+//! NumPy's own import takes most of a second's fifth). Call before any array of these records is made or read.
+void ensure_record_dtypes();
+
+//! The argument as a C-contiguous array of trajectory or joint records (converting a compatible structured
+//! array); TypeError naming `what` otherwise.
+py::array_t<TrajectoryRow, py::array::c_style> trajectory_records(const py::handle& value, const char* what);
+py::array_t<JointRow, py::array::c_style> joint_records(const py::handle& value, const char* what);
 
 }  // namespace stiffpath::python

@@ -36,11 +36,18 @@ PYBIND11_MODULE(stiffpath, m) {
     }
   });
 
-  PYBIND11_NUMPY_DTYPE(stiffpath::python::TrajectoryRow, t_s, p_m, v_m_s, a_m_s2, j_m_s3, laser, power, line);
-  PYBIND11_NUMPY_DTYPE(stiffpath::python::JointRow, t_s, q_rad, qd_rad_s, qdd_rad_s2, target_m, command_m, force_N,
-                       deflection_m, laser, outside_grid, line);
-  m.attr("trajectory_dtype") = py::dtype::of<stiffpath::python::TrajectoryRow>();
-  m.attr("joints_dtype") = py::dtype::of<stiffpath::python::JointRow>();
+  // NumPy is imported when the first array is made, not here (it would triple the module's import time).
+  m.def(
+      "__getattr__",
+      [](const std::string& name) -> py::object {
+        if (name == "trajectory_dtype" || name == "joints_dtype") {
+          stiffpath::python::ensure_record_dtypes();
+          return name == "trajectory_dtype" ? py::dtype::of<stiffpath::python::TrajectoryRow>()
+                                            : py::dtype::of<stiffpath::python::JointRow>();
+        }
+        throw py::attribute_error("module 'stiffpath' has no attribute '" + name + "'");
+      },
+      "trajectory_dtype and joints_dtype, made on first use (PEP 562).");
 
   stiffpath::python::add_kinematics(m);
   stiffpath::python::add_compliance(m);

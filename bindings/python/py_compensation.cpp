@@ -6,6 +6,7 @@
 #include "arrays.hpp"
 #include "parts.hpp"
 #include "stiffpath/compensation/compensator.hpp"
+#include "stiffpath/compensation/run_filters.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/job/job.hpp"
 #include "stiffpath/job/joint_writer.hpp"
@@ -56,6 +57,7 @@ class RowWriter final : public job::JointWriter {
                     {c.force_N.x(), c.force_N.y()},
                     {c.deflection_m.x(), c.deflection_m.y()},
                     c.laser_on,
+                    c.power,
                     c.outside_grid,
                     static_cast<std::int32_t>(c.line)});
   }
@@ -69,24 +71,44 @@ struct PyCompensator {
 };
 
 PyCompensator make_compensator(const kinematics::Robot& robot, const std::optional<PyModel>& model, double gain,
-                               bool enabled, bool check_limits) {
+                               bool enabled, bool check_limits, const std::string& method, double damping_ratio) {
   PyModel used = model ? *model : to_py_model(compliance::load_robot_model(robot));
   if (model) {
     compliance::LoadedModel check{nullptr, used.provenance, used.label};
     compliance::check_model_geometry(check, robot, false);
   }
-  auto compensator = std::make_shared<Compensator>(robot, used.model, compensation::CompensatorOptions{gain, enabled, check_limits});
+  compensation::CompensatorOptions options{gain, enabled, check_limits};
+  options.method = compensation::parse_method(method);
+  options.damping_ratio = damping_ratio;
+  auto compensator = std::make_shared<Compensator>(robot, used.model, options);
   return {std::move(compensator), std::move(used)};
 }
 
-py::array compensate(const PyCompensator& c, const py::array_t<TrajectoryRow, py::array::c_style>& trajectory,
-                     const std::string& acceleration, double rate_hz, const std::string& label) {
+// The filters `stiffpath run` puts before compensation; a shaper's frequency bound is the tip's lowest natural
+// frequency over the rectangle the trajectory covers (run takes it over the planned job's region the same way).
+compensation::FilterChain job_filters(const PyCompensator& c, const TrajectoryRow* rows, std::size_t n, double rate_hz,
+                                      double smooth_s, const std::string& shaper) {
+  compensation::RunFilterOptions options;
+  options.smooth_s = smooth_s;
+  options.shaper = compensation::parse_filter_kind(shaper);
+  options.damping_ratio = c.compensator->options().damping_ratio;
+  auto region = compliance::GridBounds::none();
+  for (std::size_t i = 0; i < n; ++i) region.include(Vec2(rows[i].p_m[0], rows[i].p_m[1]));
+  return compensation::make_run_filters(rate_hz, options, c.model.model, c.compensator->robot().moving_mass_kg, region);
+}
+
+py::array compensate(const PyCompensator& c, const py::handle& trajectory_in,
+                     const std::string& acceleration, double rate_hz, double smooth_s, const std::string& shaper,
+                     const std::string& label) {
+  const auto trajectory = trajectory_records(trajectory_in, "trajectory");
   const auto source_kind = job::parse_acceleration_source(acceleration);
-  RowSource source(trajectory.data(), static_cast<std::size_t>(trajectory.size()));
+  const auto n = static_cast<std::size_t>(trajectory.size());
+  RowSource source(trajectory.data(), n);
   RowWriter writer;
   {
     py::gil_scoped_release unlocked;
-    job::run_job(source, *c.compensator, &writer, label, rate_hz, source_kind);
+    compensation::FilterChain filters = job_filters(c, trajectory.data(), n, rate_hz, smooth_s, shaper);
+    job::run_job(source, *c.compensator, &writer, label, rate_hz, source_kind, {}, &filters);
   }
   py::array_t<JointRow> out(static_cast<py::ssize_t>(writer.rows.size()));
   std::copy(writer.rows.begin(), writer.rows.end(), out.mutable_data());
@@ -125,9 +147,13 @@ void add_compensation(py::module_& m) {
                             "CG (eq. 4.4), Δ = C(p)·F (eqs. 4.6–4.7, 4.12), p_cmd = p − k·Δ, θ = IK(p_cmd), then the\n"
                             "reach and joint-limit checks.")
       .def(py::init(&make_compensator), py::arg("robot"), py::arg("model") = py::none(), py::arg("gain") = 1.0,
-           py::arg("enabled") = true, py::arg("check_limits") = true,
+           py::arg("enabled") = true, py::arg("check_limits") = true, py::kw_only(), py::arg("method") = "dynamic",
+           py::arg("damping_ratio") = compensation::CompensatorOptions{}.damping_ratio,
            "robot: a Robot. model: a Model (default: the robot's own, as the CLI's run). gain: k (≥ 0).\n"
-           "enabled=False gives the uncompensated command p_cmd = p. A model fitted for another geometry is refused.")
+           "enabled=False gives the uncompensated command p_cmd = p. A model fitted for another geometry is refused.\n"
+           "method: 'dynamic' (default, as `stiffpath run`: the damped tip's lag inverted, p_cmd = p + k·δ) or\n"
+           "'quasi-static' (the thesis's p_cmd = p − k·C(p)·F). damping_ratio: ζ of the tip's modes the dynamic\n"
+           "method assumes (0 … 2, default 0.05).")
       .def_property_readonly("model", [](const PyCompensator& c) { return c.model; })
       .def_property_readonly("robot", [](const PyCompensator& c) { return c.compensator->robot(); })
       .def("step",
@@ -147,11 +173,18 @@ void add_compensation(py::module_& m) {
            py::arg("s_m_s4") = py::make_tuple(0.0, 0.0),
            "One sample of the planned path (t in s; p, v, a, jerk, snap as (x, y) pairs in m, m/s, m/s², m/s³, m/s⁴) →\n"
            "JointCommand. Never raises for a bad sample: check .ok / .status, as a servo loop would.")
+      .def_property_readonly("method", [](const PyCompensator& c) { return std::string(compensation::to_string(c.compensator->options().method)); })
+      .def_property_readonly("damping_ratio", [](const PyCompensator& c) { return c.compensator->options().damping_ratio; })
       .def("compensate", &compensate, py::arg("trajectory"), py::arg("acceleration") = "analytic",
-           py::arg("rate_hz") = motion::default_sample_rate_hz, py::arg("label") = "<trajectory>",
+           py::arg("rate_hz") = motion::default_sample_rate_hz, py::kw_only(),
+           py::arg("smooth_s") = compensation::RunFilterOptions{}.smooth_s, py::arg("shaper") = "none",
+           py::arg("label") = "<trajectory>",
            "A whole trajectory (dtype stiffpath.trajectory_dtype, e.g. from plan) → joint commands (dtype\n"
            "stiffpath.joints_dtype: t_s, q_rad, qd_rad_s, qdd_rad_s2, target_m, command_m, force_N, deflection_m,\n"
-           "laser, outside_grid, line), as `stiffpath run` writes them. acceleration: 'analytic' (the profile's) or\n"
+           "laser, power, outside_grid, line), as `stiffpath run` writes them, with run's reference filters before\n"
+           "compensation: smooth_s (s, default 0.008: two moving averages of half that width, continuous jerk and\n"
+           "snap; 0 = off) and shaper ('none', 'zv', 'zvd': an input shaper following the tip's frequency). The\n"
+           "filters lengthen the job by their delay. acceleration: 'analytic' (the profile's) or\n"
            "'numeric' (second difference of the positions at rate_hz, the thesis's §4.3). The first refused sample\n"
            "raises stiffpath.Error naming the label, the G-code line, the time and the limit.");
 }

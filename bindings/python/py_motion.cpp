@@ -54,6 +54,7 @@ py::array plan(const std::optional<std::string>& gcode, const std::optional<std:
                       static_cast<std::int32_t>(s->line)});
     }
   }
+  ensure_record_dtypes();
   py::array_t<TrajectoryRow> out(static_cast<py::ssize_t>(rows.size()));
   std::copy(rows.begin(), rows.end(), out.mutable_data());
   return out;
