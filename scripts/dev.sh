@@ -61,6 +61,10 @@ case "$what" in
     # The Python module (pytest) and the MATLAB/Octave gateway (an Octave script), both against the CLI's numbers.
     cmake --preset dev -DSTIFFPATH_BUILD_PYTHON=ON -DSTIFFPATH_BUILD_MATLAB=ON >/dev/null
     cmake --build --preset dev -j "$jobs"
+    for label in python octave; do  # asked for by name: missing tools are an error here, not a skipped test
+      ctest --preset dev -N -L "$label" | grep -q 'Total Tests: [1-9]' ||
+        { echo "dev.sh bindings: no $label tests configured (see the configure messages)" >&2; exit 1; }
+    done
     ctest --preset dev -L 'python|octave|install'
     ;;
   *)
