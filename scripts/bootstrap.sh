@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs every Debian package that stiffpath's build, tests, benchmarks and tools need (idempotent).
 # Optional groups, installed only when named: `bootstrap.sh linuxcnc` adds LinuxCNC for its integration tests,
+# `bootstrap.sh bindings` GNU Octave (the MEX gateway's build and test) and matplotlib (the Python example),
 # `bootstrap.sh browser` headless Chromium for the HTML report's browser test.
 set -euo pipefail
 
@@ -9,7 +10,7 @@ packages=(
   libeigen3-dev libcli11-dev nlohmann-json3-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libopencv-dev libpng-dev gnuplot-nox
-  python3 python3-dev pybind11-dev python3-numpy
+  python3 python3-dev pybind11-dev python3-numpy python3-pytest
   clang  # libFuzzer harnesses (scripts/dev.sh fuzz)
 )
 for group in "$@"; do
@@ -17,9 +18,11 @@ for group in "$@"; do
     # LinuxCNC 2.9 in user space (no real-time kernel needed for the tests): halcompile, Makefile.modinc, halrun,
     # halsampler/halstreamer and the linuxcnc Python module. About 87 packages, 69 MB of archives.
     linuxcnc) packages+=(linuxcnc-uspace linuxcnc-uspace-dev) ;;
+    # Octave 7 with mkoctfile, and matplotlib. Measured on Debian 12 (an image with the base packages): see docs/matlab.md.
+    bindings) packages+=(octave liboctave-dev python3-matplotlib) ;;
     # Debian's Chromium, run headless by the test labelled browser (docs/figures.md).
     browser) packages+=(chromium) ;;
-    *) echo "bootstrap: unknown package group '$group' (known: linuxcnc, browser)" >&2; exit 2 ;;
+    *) echo "bootstrap: unknown package group '$group' (known: linuxcnc, bindings, browser)" >&2; exit 2 ;;
   esac
 done
 

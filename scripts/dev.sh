@@ -7,7 +7,7 @@ what=${1:-demo}
 jobs=$(nproc 2>/dev/null || echo 2)
 
 case "$what" in
-  linuxcnc|browser) bash scripts/bootstrap.sh "$what" ;;
+  linuxcnc|bindings|browser) bash scripts/bootstrap.sh "$what" ;;
   *) bash scripts/bootstrap.sh ;;
 esac
 
@@ -57,6 +57,16 @@ case "$what" in
     "${sudo_cmd[@]}" cmake --build --preset dev --target stiffpath_linuxcnc_install_modules
     ctest --preset dev -L 'c_api|linuxcnc'
     ;;
+  bindings)
+    # The Python module (pytest) and the MATLAB/Octave gateway (an Octave script), both against the CLI's numbers.
+    cmake --preset dev -DSTIFFPATH_BUILD_PYTHON=ON -DSTIFFPATH_BUILD_MATLAB=ON >/dev/null
+    cmake --build --preset dev -j "$jobs"
+    for label in python octave; do  # asked for by name: missing tools are an error here, not a skipped test
+      ctest --preset dev -N -L "$label" | grep -q 'Total Tests: [1-9]' ||
+        { echo "dev.sh bindings: no $label tests configured (see the configure messages)" >&2; exit 1; }
+    done
+    ctest --preset dev -L 'python|octave|install'
+    ;;
   browser)
     # The HTML report in headless Chromium (the test labelled browser; it cannot skip here).
     cmake --preset dev >/dev/null
@@ -64,7 +74,7 @@ case "$what" in
     STIFFPATH_REQUIRE_BROWSER=1 ctest --preset dev -L browser
     ;;
   *)
-    echo "usage: scripts/dev.sh demo|test|asan|bench|linuxcnc|fuzz|tsan|browser" >&2
+    echo "usage: scripts/dev.sh demo|test|asan|bench|linuxcnc|bindings|browser|fuzz|tsan" >&2
     exit 2
     ;;
 esac

@@ -11,6 +11,7 @@
 #include "progress.hpp"
 #include "motion_flags.hpp"
 #include "robot_flags.hpp"
+#include "stiffpath/compensation/run_filters.hpp"
 #include "stiffpath/compensation/tip_modes.hpp"
 #include "stiffpath/job/job.hpp"
 #include "stiffpath/compliance/model_factory.hpp"
@@ -109,20 +110,12 @@ void run(const RunArgs& a) {
     }
   }
   const motion::PlanOptions options = plan_options(motion_flags, robot);
-  std::vector<compensation::ReferenceFilter> filter_list;
-  if (shaper != compensation::FilterKind::none) {
-    compensation::ReferenceFilterOptions f;
-    f.kind = shaper;
-    f.damping_ratio = a.damping_ratio;
-    f.min_frequency_hz = lowest_hz;
-    const double mass = robot.moving_mass_kg;
-    filter_list.emplace_back(options.rate_hz, f, [model, mass](const kinematics::Vec2& p) {
-      return compensation::lowest_natural_frequency_hz(model->compliance(model->bounds().clamp(p)), mass);
-    });
-  }
-  // The moving averages come last: the reference the compensator sees has continuous jerk and snap.
-  for (auto& f : compensation::smoothing_filters(options.rate_hz, a.smooth_ms * 1e-3)) filter_list.push_back(std::move(f));
-  compensation::FilterChain filters(std::move(filter_list));
+  compensation::RunFilterOptions filter_options;
+  filter_options.smooth_s = a.smooth_ms * 1e-3;
+  filter_options.shaper = shaper;
+  filter_options.damping_ratio = a.damping_ratio;
+  filter_options.min_frequency_hz = lowest_hz;
+  compensation::FilterChain filters = compensation::make_run_filters(options.rate_hz, filter_options, model, robot.moving_mass_kg);
   const auto acceleration = job::parse_acceleration_source(a.accel_source);
 
   const auto format = job::parse_output_format(a.format);

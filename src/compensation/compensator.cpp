@@ -50,10 +50,6 @@ Vec2 times(const Mat2& M, const Vec2& v) noexcept {
   return {M(0, 0) * v.x() + M(0, 1) * v.y(), M(1, 0) * v.x() + M(1, 1) * v.y()};
 }
 
-bool finite(const Mat2& M) noexcept {
-  return std::isfinite(M(0, 0)) && std::isfinite(M(0, 1)) && std::isfinite(M(1, 0)) && std::isfinite(M(1, 1));
-}
-
 // Mᵀ·v.
 Vec2 times_transposed(const Mat2& M, const Vec2& v) noexcept {
   return {M(0, 0) * v.x() + M(1, 0) * v.y(), M(0, 1) * v.x() + M(1, 1) * v.y()};

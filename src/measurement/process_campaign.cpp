@@ -64,7 +64,8 @@ DisplacementTable process_campaign(const Campaign& campaign, const ProcessOption
     throw Error(SourceLocation{campaign.source}, "the nominal force step must be a positive number of N");
   }
   validate_campaign(campaign);
-  DisplacementTable table{campaign.source, {}};
+  DisplacementTable table;
+  table.source = campaign.source;
   for (const auto& series : group_series(campaign)) {
     const StepAverage ref = average(series.steps.at(0), options.geometry);
     const CampaignReading& first = *series.steps.at(0).front();

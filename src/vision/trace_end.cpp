@@ -16,10 +16,6 @@ double median(std::vector<double> v) {
   return *mid;
 }
 
-double b_on(const SectionFrame& fr, const evaluation::Line2& l, double a) {
-  return fr.b_of(l.at((a - fr.a_of(l.origin)) / fr.a_of(l.direction)));
-}
-
 // The pixel box holding this side's coarse cells at or beyond `seed` along `outward`, widened by `margin`.
 cv::Rect end_region(const SideSections& side, const Point2& seed, const Point2& outward, double margin) {
   const CoarsePath& path = *side.path;
@@ -74,7 +70,6 @@ evaluation::Line2 end_line(const SideSections& side, bool low, std::size_t count
 // the end looks like a round spot at all (a square cut gives a flat front: R ≫ w/2 and misfit corners).
 FreeEnd measure_free_end(const SideSections& side, const evaluation::Line2& side_line, bool low, const ScanOptions& options) {
   const SectionFrame& fr = side.frame;
-  const evaluation::Line2 l = end_line(side, low, side.end_fit);
   // Width and darkness of the mark's last stretch before the end (both from the same darkness scale).
   // A section cuts the band at the band's own local angle, which near a wiggling end is not the side's:
   // its darkness integral is k·w/cos θ with tan θ the local slope of the centre line.

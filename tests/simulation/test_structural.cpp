@@ -90,7 +90,7 @@ TEST(Structural, ActuatorSpringsAloneGiveJKJt) {
   for (auto& a : arms) a.elbow_rad_per_Nm = 1e4;  // a free elbow: no moment passes it
   const StructuralModel model(robot, arms, {0.172132, 0.272132, -0.075, 0.075});
   const auto five_bar = robot.five_bar();
-  for (const compliance::Vec2 p : {compliance::Vec2(0.2, 0.03), compliance::Vec2(0.26, -0.06)}) {
+  for (const compliance::Vec2& p : {compliance::Vec2(0.2, 0.03), compliance::Vec2(0.26, -0.06)}) {
     const compliance::Mat2 J = five_bar.jacobian(five_bar.inverse(p));
     // Arm i then resists only along its distal link u_i, with compliance d_i = κ_i(l·e_i⊥·u_i)²; the arms in
     // parallel give C = U⁻ᵀ·diag(d)·U⁻¹ = J·diag(κ)·Jᵀ.

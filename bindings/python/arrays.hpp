@@ -1,0 +1,77 @@
+// NumPy ↔ Eigen helpers of the Python module: (..., 2) point arrays, (..., 2, 2) matrices, the record dtypes.
+#pragma once
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "stiffpath/kinematics/types.hpp"
+
+namespace stiffpath::python {
+
+namespace py = pybind11;
+using kinematics::Mat2;
+using kinematics::Vec2;
+
+//! A float64 array whose last axis has length 2 (a point, a force, joint angles); `what` names the
+//! argument in the ValueError when the shape is wrong.
+py::array_t<double, py::array::c_style | py::array::forcecast> pairs(const py::handle& value, const char* what);
+
+//! The leading shape of a (..., 2) array (its shape without the last axis).
+std::vector<py::ssize_t> leading_shape(const py::array& pairs);
+
+//! A new (..., 2) or (..., 2, 2) float64 array of the given leading shape.
+py::array_t<double> new_pairs(const std::vector<py::ssize_t>& leading);
+py::array_t<double> new_matrices(const std::vector<py::ssize_t>& leading);
+
+//! Broadcasts two (..., 2) arrays against each other (NumPy's rules), both C-contiguous float64.
+std::pair<py::array_t<double>, py::array_t<double>> broadcast_pairs(const py::handle& a, const char* a_name,
+                                                                    const py::handle& b, const char* b_name);
+
+//! A list of points as an (N, 2) float64 array.
+py::array_t<double> points_array(const std::vector<Vec2>& points);
+
+//! "(x = 222.132 mm, y = 37.5 mm)" for messages.
+std::string describe_point(const Vec2& p_m);
+
+//! One sample of a planned trajectory: the record type of stiffpath.trajectory_dtype. SI.
+struct TrajectoryRow {
+  double t_s;
+  double p_m[2];
+  double v_m_s[2];
+  double a_m_s2[2];
+  double j_m_s3[2];
+  bool laser;
+  double power;
+  std::int32_t line;
+};
+
+//! One joint command: the record type of stiffpath.joints_dtype. SI.
+struct JointRow {
+  double t_s;
+  double q_rad[2];
+  double qd_rad_s[2];
+  double qdd_rad_s2[2];
+  double target_m[2];
+  double command_m[2];
+  double force_N[2];
+  double deflection_m[2];
+  bool laser;
+  double power;
+  bool outside_grid;
+  std::int32_t line;
+};
+
+//! Registers the record dtypes with pybind11 on first use (this imports NumPy, which `import stiffpath` does not:
+//! NumPy's own import takes most of a second's fifth). Call before any array of these records is made or read.
+void ensure_record_dtypes();
+
+//! The argument as a C-contiguous array of trajectory or joint records (converting a compatible structured
+//! array); TypeError naming `what` otherwise.
+py::array_t<TrajectoryRow, py::array::c_style> trajectory_records(const py::handle& value, const char* what);
+py::array_t<JointRow, py::array::c_style> joint_records(const py::handle& value, const char* what);
+
+}  // namespace stiffpath::python
