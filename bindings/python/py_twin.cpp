@@ -48,9 +48,13 @@ compensation::JointCommand to_command(const JointRow& r) {
 PySimulation simulate(const kinematics::Robot& robot, const py::handle& joints_in,
                       const std::optional<PyModel>& truth, const std::string& truth_family, double perturbation,
                       std::uint64_t seed, const std::string& servo, bool cg_lever, int sides, double mass_scale,
-                      double damping_ratio, double motor_inertia_kg_m2, double load_feedforward, double settle_s,
-                      double step_rate_hz, double servo_bandwidth_hz, double mark_rate_hz) {
+                      double damping_ratio, double motor_inertia_kg_m2, double load_feedforward,
+                      const std::string& load_feedforward_from, double settle_s, double step_rate_hz,
+                      double servo_bandwidth_hz, double mark_rate_hz) {
   if (servo != "loaded" && servo != "ideal") throw Error(fmt::format("simulate: servo must be 'loaded' or 'ideal', got '{}'", servo));
+  if (load_feedforward_from != "reference" && load_feedforward_from != "command") {
+    throw Error(fmt::format("simulate: load_feedforward_from must be 'reference' or 'command', got '{}'", load_feedforward_from));
+  }
   if (sides < 0) throw Error(fmt::format("simulate: sides must be >= 0 (0: inferred per stroke), got {}", sides));
   const auto joints = joint_records(joints_in, "joints");
   const JointRow* rows = joints.data();
@@ -64,6 +68,7 @@ PySimulation simulate(const kinematics::Robot& robot, const py::handle& joints_i
   options.plant.tip_damping_ratio = damping_ratio;
   options.plant.motor_inertia_kg_m2 = motor_inertia_kg_m2;
   options.plant.load_feedforward = load_feedforward;
+  options.plant.load_feedforward_from_command = load_feedforward_from == "command";
   options.plant.servo_feels_load = servo == "loaded";
   simulation::TrueComplianceOptions truth_options;
   truth_options.family = truth_family;
@@ -165,6 +170,7 @@ void add_twin(py::module_& m) {
         py::arg("damping_ratio") = simulation::PlantOptions{}.tip_damping_ratio,
         py::arg("motor_inertia_kg_m2") = simulation::PlantOptions{}.motor_inertia_kg_m2,
         py::arg("load_feedforward") = simulation::PlantOptions{}.load_feedforward,
+        py::arg("load_feedforward_from") = "reference",
         py::arg("settle_s") = simulation::SimulationOptions{}.settle_s,
         py::arg("step_rate_hz") = simulation::PlantOptions{}.step_rate_hz,
         py::arg("servo_bandwidth_hz") = simulation::PlantOptions{}.servo_bandwidth_hz,
@@ -172,7 +178,9 @@ void add_twin(py::module_& m) {
         "Runs joint commands (dtype stiffpath.joints_dtype, e.g. from Compensator.compensate) through the digital twin,\n"
         "as `stiffpath simulate` with the same defaults: servo-driven joints ('loaded': the drives feel the tip\n"
         "through Jᵀ; 'ideal': they track unloaded; bandwidth in Hz, motor inertia in kg·m², load_feedforward the\n"
-        "fraction of the platform's rigid-body torque fed forward) and a compliant tip (damping_ratio ζ) with the\n"
+        "fraction of the platform's load torque fed forward, load_feedforward_from 'reference' (the rigid-body model\n"
+        "at the joint commands) or 'command' (the job's own D'Alembert force F, τ = Jᵀ·(−F))) and a compliant tip\n"
+        "(damping_ratio ζ) with the\n"
         "true compliance (truth, default true_compliance(robot, perturbation, seed, truth_family)) plus the CG's\n"
         "lever (cg_lever=False puts the CG at the measured point); mass_scale: plant mass / assumed mass.\n"
         "Integrated at step_rate_hz, holding the last command for settle_s s; the mark is recorded at mark_rate_hz\n"

@@ -47,6 +47,21 @@ def test_simulate_options_equal_the_cli_flags(cli, tmp_path):
         stiffpath.simulate(robot, compensated, servo="perfect")
 
 
+def test_torque_feedforward_from_the_jobs_force_equals_the_cli_and_helps(cli, tmp_path):
+    robot = stiffpath.Robot("oc-gu")
+    joints = tmp_path / "joints.csv"
+    cli("run", EXAMPLES / "y_motion.gcode", "-o", joints)
+    compensated = stiffpath.Compensator(robot).compensate(stiffpath.plan(file=str(EXAMPLES / "y_motion.gcode")))
+    fed = stiffpath.simulate(robot, compensated, load_feedforward_from="command")
+    rigid = stiffpath.simulate(robot, compensated)
+    doc = cli("simulate", joints, "--json", "--load-feedforward-from", "command")
+    assert fed.metrics.max_deviation_m * 1e3 == pytest.approx(doc["max_deviation_mm"], abs=1e-5)
+    assert fed.residual_vibration_m * 1e3 == pytest.approx(doc["residual_vibration_mm"], abs=1e-5)
+    assert fed.residual_vibration_m < rigid.residual_vibration_m
+    with pytest.raises(stiffpath.Error, match="load_feedforward_from"):
+        stiffpath.simulate(robot, compensated, load_feedforward_from="model")
+
+
 def test_true_compliance_differs_from_the_model_by_at_most_the_perturbation():
     robot = stiffpath.Robot("oc-gu")
     base = stiffpath.true_compliance(robot, perturbation=0.0)
