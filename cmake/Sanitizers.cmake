@@ -3,7 +3,8 @@
 if(STIFFPATH_SANITIZE OR STIFFPATH_FUZZ)
   add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
   # -O1, as the sanitizers' authors advise: unoptimised Eigen under ASan made the twin's CLI tests 50-100x slower than
-  # the dev build's, which put the CI's time limit at risk.
+  # the dev build's, which put the CI's time limit at risk. The asan preset also debugs with -g1 (line tables: reports
+  # keep file:line, the build is ~25 % faster than with -g).
   if(STIFFPATH_SANITIZE)
     add_compile_options(-O1)
   endif()

@@ -2,6 +2,7 @@
 #include <pybind11/eval.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -92,6 +93,51 @@ py::object table_rows(const DisplacementTable& t) {
   return np.attr("array")(records, py::arg("dtype") = fields);
 }
 
+// One column of table_from_arrays as Python values, broadcast to `n` rows (None: absent).
+py::list column(const py::object& values, py::ssize_t n) {
+  auto np = py::module_::import("numpy");
+  const py::object flat = np.attr("ravel")(np.attr("broadcast_to")(np.attr("asarray")(values), py::make_tuple(n)));
+  return flat.attr("tolist")();
+}
+
+// A number cell in mm (or N) of a value in m (or N); NaN or None: an empty cell (missing).
+std::string number_cell(const py::handle& v, double factor) {
+  if (v.is_none()) return {};
+  const double x = v.cast<double>();
+  return std::isnan(x) ? std::string() : fmt::format("{:.17g}", x * factor);
+}
+
+// The arrays as the CSV text the table reader takes, so that they are checked exactly as a file is (line k + 2
+// is row k).
+DisplacementTable table_from_arrays(const py::object& point, const py::object& direction, const py::object& x_m,
+                                    const py::object& y_m, const py::object& F_N, const py::object& dx_m,
+                                    const py::object& dy_m, const py::object& mechanism, const py::object& step,
+                                    const py::object& dz_m, const std::string& label) {
+  auto np = py::module_::import("numpy");
+  const auto n = static_cast<py::ssize_t>(py::len(np.attr("ravel")(np.attr("asarray")(point))));
+  if (n == 0) throw Error(label + ": no rows (point is empty)");
+  const py::list pt = column(point, n), dir = column(direction, n), x = column(x_m, n),
+                 y = column(y_m, n), f = column(F_N, n), dx = column(dx_m, n),
+                 dy = column(dy_m, n);
+  const bool has_mech = !mechanism.is_none(), has_step = !step.is_none(), has_dz = !dz_m.is_none();
+  const py::list mech = has_mech ? column(mechanism, n) : py::list();
+  const py::list st = has_step ? column(step, n) : py::list();
+  const py::list dz = has_dz ? column(dz_m, n) : py::list();
+  std::string text = std::string(has_mech ? "mechanism," : "") + "direction,point,x_mm,y_mm," + (has_step ? "step," : "") +
+                     "F_N,dx_mm,dy_mm" + (has_dz ? ",dz_mm" : "") + "\n";
+  for (py::ssize_t i = 0; i < n; ++i) {
+    if (has_mech) text += py::str(mech[i]).cast<std::string>() + ",";
+    text += py::str(dir[i]).cast<std::string>() + "," + py::str(pt[i]).cast<std::string>() + ",";
+    text += number_cell(x[i], 1e3) + "," + number_cell(y[i], 1e3) + ",";
+    if (has_step) text += py::str(st[i]).cast<std::string>() + ",";
+    text += number_cell(f[i], 1.0) + "," + number_cell(dx[i], 1e3) + "," + number_cell(dy[i], 1e3);
+    if (has_dz) text += "," + number_cell(dz[i], 1e3);
+    text += "\n";
+  }
+  py::gil_scoped_release unlocked;
+  return measurement::parse_displacement_table(text, label);
+}
+
 }  // namespace
 
 void add_compliance(py::module_& m) {
@@ -113,6 +159,14 @@ void add_compliance(py::module_& m) {
   m.def("load_table", py::overload_cast<const std::string&>(&measurement::load_displacement_table), py::arg("path"),
         "Loads a displacement table CSV ('builtin:thesis/displacements.csv' for the thesis's). Raises stiffpath.Error\n"
         "naming the file, line and column of a bad cell.");
+  m.def("table_from_arrays", &table_from_arrays, py::arg("point"), py::arg("direction"), py::arg("x_m"), py::arg("y_m"),
+        py::arg("F_N"), py::arg("dx_m"), py::arg("dy_m"), py::kw_only(), py::arg("mechanism") = py::none(),
+        py::arg("step") = py::none(), py::arg("dz_m") = py::none(), py::arg("label") = "arrays",
+        "A displacement table from arrays (one entry per row, broadcast): point ids, directions ('+x', '-x', '+y',\n"
+        "'-y'), the nominal position x_m, y_m (m), the force F_N relative to step 0 (N), the deflections dx_m, dy_m\n"
+        "(m; NaN: missing), and optionally mechanism ('OC', …), step (1, 2, …; else numbered per series) and dz_m.\n"
+        "Checked exactly as a CSV file is: a bad value raises stiffpath.Error naming `label`, line k + 2 for row k,\n"
+        "and the column.");
   m.def("thesis_table", [] { return measurement::load_displacement_table(measurement::thesis_dataset()); },
         "The thesis's displacement tables 2.2–3.9 (OC and SC rows), built in.");
 

@@ -165,13 +165,16 @@ std::string cell(const std::optional<double>& v, double factor, int decimals) {
 
 core::DataRef thesis_dataset() { return {"thesis/displacements.csv", true}; }
 
-DisplacementTable load_displacement_table(const core::DataRef& file) {
-  const std::string bytes = core::read_data(file);
-  std::istringstream in(bytes);
-  core::CsvReader csv(in, file.label());
-  DisplacementTable table = read_table(csv, file.label());
-  table.sha256 = core::sha256_hex(bytes);
+DisplacementTable parse_displacement_table(const std::string& text, const std::string& label) {
+  std::istringstream in(text);
+  core::CsvReader csv(in, label);
+  DisplacementTable table = read_table(csv, label);
+  table.sha256 = core::sha256_hex(text);
   return table;
+}
+
+DisplacementTable load_displacement_table(const core::DataRef& file) {
+  return parse_displacement_table(core::read_data(file), file.label());
 }
 
 DisplacementTable load_displacement_table(const std::string& path) {

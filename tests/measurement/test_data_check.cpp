@@ -25,7 +25,7 @@ TEST(LineFit, HandComputed) {
 // Compliance field with the mirror symmetry y → −y and a symmetric 2×2 block (Maxwell–Betti):
 // [dx dy] = C·F, C = [[a + b·x, c·y], [c·y, d]]; dz, rx (odd in y under Fx), ry (even) likewise.
 DisplacementTable synthetic(const std::string& mechanism, double scale) {
-  DisplacementTable t{"synthetic", {}};
+  DisplacementTable t{"synthetic", {}, {}};
   const double kgf[] = {5.0, 9.92, 14.89, 19.83, 24.86};
   for (ForceDirection dir : {ForceDirection::plus_x, ForceDirection::minus_y}) {
     for (double x : {0.172132, 0.222132}) {

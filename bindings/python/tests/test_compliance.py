@@ -93,3 +93,25 @@ def test_a_bad_table_names_file_line_and_column(tmp_path):
     assert raised.value.file == str(bad)
     assert raised.value.line == 3
     assert str(raised.value).startswith(f"{bad}:3:")
+
+
+def test_a_table_from_arrays_fits_as_the_same_table_loaded_from_its_file(oc, table):
+    rows = table.filter("OC").rows()
+    rebuilt = stiffpath.table_from_arrays(rows["point"], rows["direction"], rows["x_m"], rows["y_m"], rows["F_N"],
+                                          rows["dx_m"], rows["dy_m"], mechanism=rows["mechanism"], step=rows["step"])
+    assert len(rebuilt) == len(rows)
+    back = rebuilt.rows()
+    for field in ["x_m", "y_m", "F_N", "dx_m", "dy_m"]:
+        np.testing.assert_allclose(back[field], rows[field], rtol=1e-15, atol=1e-18, equal_nan=True)
+    p = np.array([[0.2, 0.01], [0.25, -0.05]])
+    np.testing.assert_allclose(stiffpath.fit(rebuilt, oc, method="bilinear").C(p[:, 0], p[:, 1]),
+                               stiffpath.fit(table, oc, method="bilinear").C(p[:, 0], p[:, 1]), rtol=1e-12)
+
+
+def test_bad_arrays_are_refused_with_their_row(oc):
+    with pytest.raises(stiffpath.Error) as raised:
+        stiffpath.table_from_arrays(["p1", "p1"], ["+x", "+z"], 0.2, 0.0, [50.0, 100.0], [1e-5, 2e-5], 0.0)
+    assert raised.value.line == 3  # row 1: line 1 + 2
+    assert "+z" in str(raised.value)
+    with pytest.raises(stiffpath.Error, match="force must be positive"):
+        stiffpath.table_from_arrays(["p1"], ["+x"], 0.2, 0.0, [-5.0], [1e-5], 0.0, label="mine")

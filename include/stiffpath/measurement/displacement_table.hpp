@@ -76,6 +76,8 @@ core::DataRef thesis_dataset();
 //! duplicated key) and throws stiffpath::Error naming file, line and column; a missing required
 //! column is named with the header's line. Optional columns take the defaults documented above.
 DisplacementTable load_displacement_table(const core::DataRef& file);
+//! The same for CSV text already in memory; errors name `label` with the text's line and column.
+DisplacementTable parse_displacement_table(const std::string& text, const std::string& label);
 //! The same for a path on disk ("builtin:<path>" for a built-in file).
 DisplacementTable load_displacement_table(const std::string& path);
 
