@@ -14,9 +14,6 @@ namespace stiffpath::compensation {
 
 FilterChain make_run_filters(double rate_hz, const RunFilterOptions& options,
                              std::shared_ptr<const compliance::Model> model, double mass_kg) {
-  if (!(options.smooth_s >= 0.0 && options.smooth_s <= 1.0)) {
-    throw Error(fmt::format("reference smoothing: the width must lie in 0 … 1 s, got {} s", options.smooth_s));
-  }
   if (options.shaper == FilterKind::smooth) {
     throw Error("reference shaper: expected none, zv or zvd, got 'smooth' (smoothing has its own width)");
   }
@@ -35,7 +32,7 @@ FilterChain make_run_filters(double rate_hz, const RunFilterOptions& options,
       return lowest_natural_frequency_hz(model->compliance(model->bounds().clamp(p)), mass_kg);
     });
   }
-  for (auto& f : smoothing_filters(rate_hz, options.smooth_s)) filters.push_back(std::move(f));
+  for (auto& f : smoothing_filters(rate_hz, options.smooth_s)) filters.push_back(std::move(f));  // checks 0 … 1 s
   return FilterChain(std::move(filters));
 }
 
