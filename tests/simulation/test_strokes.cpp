@@ -42,6 +42,13 @@ JointSource source_of(const std::vector<compensation::JointCommand>& joints) {
   };
 }
 
+// The uncompensated job of `gcode` on the thesis robot's twin, each stroke measured by `meter`; the totals.
+RunMetrics metered(const std::string& gcode, RunMeter& meter) {
+  const auto robot = kinematics::load_robot("oc-gu");
+  const auto joints = joints_of(gcode);
+  return meter.totals(simulate(source_of(joints), robot, make_true_compliance(robot), {}, meter.sink()));
+}
+
 // Two lines of 40 and 30 mm with a travel move between (G61: exact stops, so each is one straight stroke).
 const char* kTwoLines =
     "G21 G90 G61\nG0 X190 Y-40\nM3 S1000\nG1 X230 Y-40 F60000\nM5\nG0 X200 Y20\nM3 S1000\nG1 X200 Y50\nM5\nM2\n";
@@ -122,13 +129,11 @@ TEST(Strokes, OneStrokeJobGivesMeasureRunsNumbers) {
 // With --sides 3 a straight line cannot be three sides: its line metrics are refused with the reason,
 // the triangle's are kept, and the totals are the triangle's alone.
 TEST(Strokes, AStrokeThatIsNotTheGivenShapeIsRefusedNotMeasured) {
-  const auto robot = kinematics::load_robot("oc-gu");
-  const auto truth = make_true_compliance(robot);
-  const auto joints = joints_of(
-      "G21 G90 G61\nG0 X187.132 Y-60\nM3 S1000\nG1 X257.132 Y-60 F120000\nG1 X222.132 Y60\nG1 X187.132 Y-60\nM5\n"
-      "G0 X190 Y40\nM3 S1000\nG1 X230 Y40\nM5\n");
   RunMeter meter(3);
-  const RunMetrics total = meter.totals(simulate(source_of(joints), robot, truth, {}, meter.sink()));
+  const RunMetrics total = metered(
+      "G21 G90 G61\nG0 X187.132 Y-60\nM3 S1000\nG1 X257.132 Y-60 F120000\nG1 X222.132 Y60\nG1 X187.132 Y-60\nM5\n"
+      "G0 X190 Y40\nM3 S1000\nG1 X230 Y40\nM5\n",
+      meter);
   ASSERT_EQ(meter.strokes().size(), 2U);
   EXPECT_TRUE(meter.strokes()[0].refusal.empty()) << meter.strokes()[0].refusal;
   EXPECT_NE(meter.strokes()[1].refusal.find("not 3 straight sides"), std::string::npos) << meter.strokes()[1].refusal;
@@ -165,13 +170,10 @@ TEST(Strokes, SidesAreInferredFromEachStrokesCorners) {
 // metrics: read as one side it would report its own shape as the robot's deviation. The straight line
 // after it keeps its numbers, and every stroke keeps AT_p.
 TEST(Strokes, AContourThatIsNotStraightSidesGetsNoLineMetrics) {
-  const auto robot = kinematics::load_robot("oc-gu");
-  const auto truth = make_true_compliance(robot);
-  const auto joints = joints_of(
-      "G21 G90 G61\nG0 X202.132 Y0\nM3 S1000\nG2 X202.132 Y0 I20 J0 F60000\nM5\n"
-      "G0 X190 Y40\nM3 S1000\nG1 X230 Y40\nM5\n");
   RunMeter meter(0);
-  const RunMetrics total = meter.totals(simulate(source_of(joints), robot, truth, {}, meter.sink()));
+  const RunMetrics total = metered(
+      "G21 G90 G61\nG0 X202.132 Y0\nM3 S1000\nG2 X202.132 Y0 I20 J0 F60000\nM5\nG0 X190 Y40\nM3 S1000\nG1 X230 Y40\nM5\n",
+      meter);
   ASSERT_EQ(meter.strokes().size(), 2U);
   EXPECT_NE(meter.strokes()[0].refusal.find("the command itself lies up to"), std::string::npos)
       << meter.strokes()[0].refusal;
