@@ -100,9 +100,13 @@ py::list column(const py::object& values, py::ssize_t n) {
   return flat.attr("tolist")();
 }
 
-// A number cell in mm (or N) of a value in m (or N); NaN or None: an empty cell (missing).
-std::string number_cell(const py::handle& v, double factor) {
+// A number cell in mm (or N) of a value in m (or N); NaN or None: an empty cell (missing). Anything but a
+// number (a string would be read in the file's units) raises stiffpath.Error naming the row and the array.
+std::string number_cell(const py::handle& v, double factor, py::ssize_t row, const char* name) {
   if (v.is_none()) return {};
+  if (!py::isinstance<py::float_>(v) && !py::isinstance<py::int_>(v)) {
+    throw Error(fmt::format("{}[{}]: expected a number, got {}", name, row, py::repr(v).cast<std::string>()));
+  }
   const double x = v.cast<double>();
   return std::isnan(x) ? std::string() : fmt::format("{:.17g}", x * factor);
 }
@@ -128,10 +132,11 @@ DisplacementTable table_from_arrays(const py::object& point, const py::object& d
   for (py::ssize_t i = 0; i < n; ++i) {
     if (has_mech) text += py::str(mech[i]).cast<std::string>() + ",";
     text += py::str(dir[i]).cast<std::string>() + "," + py::str(pt[i]).cast<std::string>() + ",";
-    text += number_cell(x[i], 1e3) + "," + number_cell(y[i], 1e3) + ",";
+    text += number_cell(x[i], 1e3, i, "x_m") + "," + number_cell(y[i], 1e3, i, "y_m") + ",";
     if (has_step) text += py::str(st[i]).cast<std::string>() + ",";
-    text += number_cell(f[i], 1.0) + "," + number_cell(dx[i], 1e3) + "," + number_cell(dy[i], 1e3);
-    if (has_dz) text += "," + number_cell(dz[i], 1e3);
+    text += number_cell(f[i], 1.0, i, "F_N") + "," + number_cell(dx[i], 1e3, i, "dx_m") + "," +
+            number_cell(dy[i], 1e3, i, "dy_m");
+    if (has_dz) text += "," + number_cell(dz[i], 1e3, i, "dz_m");
     text += "\n";
   }
   py::gil_scoped_release unlocked;

@@ -113,5 +113,7 @@ def test_bad_arrays_are_refused_with_their_row(oc):
         stiffpath.table_from_arrays(["p1", "p1"], ["+x", "+z"], 0.2, 0.0, [50.0, 100.0], [1e-5, 2e-5], 0.0)
     assert raised.value.line == 3  # row 1: line 1 + 2
     assert "+z" in str(raised.value)
+    with pytest.raises(stiffpath.Error, match=r"x_m\[0\]: expected a number, got '0.2'"):
+        stiffpath.table_from_arrays(["p1"], ["+x"], ["0.2"], 0.0, [50.0], [1e-5], 0.0)
     with pytest.raises(stiffpath.Error, match="force must be positive"):
         stiffpath.table_from_arrays(["p1"], ["+x"], 0.2, 0.0, [-5.0], [1e-5], 0.0, label="mine")
