@@ -66,7 +66,7 @@ class RunMeter {
  private:
   int sides_;
   std::size_t keep_;
-  std::size_t count_ = 0, measured_ = 0;
+  std::size_t count_ = 0;
   std::string first_refusal_;
   RunMetrics totals_;
   std::vector<StrokeMetrics> kept_;
