@@ -197,6 +197,7 @@ int stiffpath_compensator_step(const stiffpath_compensator* compensator, const s
   put(c.command_m, out->command_m);
   put(c.force_N, out->force_N);
   put(c.deflection_m, out->deflection_m);
+  put(c.load_torque_Nm, out->load_torque_Nm);
   out->status = static_cast<int>(c.status);
   out->joint = c.joint;
   out->outside_grid = c.outside_grid ? 1 : 0;

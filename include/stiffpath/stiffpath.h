@@ -106,6 +106,8 @@ typedef struct stiffpath_joint_command {
   double command_m[2];      /**< the corrected target p_cmd = p − k·Δ */
   double force_N[2];        /**< F = −m·a at the platform's centre of gravity */
   double deflection_m[2];   /**< predicted Δ = C(p)·F (thesis eqs. 4.6–4.7, 4.12) */
+  double load_torque_Nm[2]; /**< τ = Jᵀ·m·a at the joints (J at p_cmd): the platform's inertial load on the drives,
+                                 for a drive's torque feed-forward (docs/compensation.md); 0 at rest */
   int status;               /**< a stiffpath_status */
   int joint;                /**< offending joint (0, 1) for the STIFFPATH_JOINT_* statuses, else −1 */
   int outside_grid;         /**< 1 if p was outside the model's grid (clamped or extrapolated) */

@@ -53,6 +53,7 @@ pin out float deflection_x_um "predicted deflection Δx at c[k-1]";
 pin out float deflection_y_um "predicted deflection Δy";
 pin out float acceleration_x_m_s2 "centred second difference of the Cartesian command";
 pin out float acceleration_y_m_s2;
+pin out float joint.#.load_torque_nm[2] "torque feed-forward for a drive that takes one: (tau[k-3] + 4 tau[k-2] + tau[k-1]) / 6 with tau = J^T m a of c, N m at the joint (divide by the gear ratio for the motor); 0 while not active";
 pin out float lag_error_deg "max over the joints of |joint.N.pos-cmd - (q[k-3] + 4 q[k-2] + q[k-1]) / 6|: 0 when motion interpolates as assumed";
 param rw float m_per_unit = 0.001 "metres per machine unit (0.001 for mm)";
 param rw float ramp_time = 0.1 "seconds for the blend factor to go from 0 to 1";
@@ -78,6 +79,7 @@ static const stiffpath_robot *kinematics = NULL;
 static double c_m[4][2];         /* Cartesian commands c[k], c[k-1], c[k-2], c[k-3] */
 static double q_deg[3][2];       /* uncorrected IK(c[k-1]), IK(c[k-2]), IK(c[k-3]) */
 static double d_deg[3][2];       /* blended joint corrections d[k-1], d[k-2], d[k-3] */
+static double tau_Nm[3][2];      /* load torques J^T m a at c[k-1], c[k-2], c[k-3] */
 static int primed = 0;
 static int enabled_periods = 0;
 static int q_known = 0;          /* how many of q_deg's rows hold computed values */
@@ -142,7 +144,8 @@ static void refuse(struct __comp_state *__comp_inst, int why) {
   blend = 0.0;
   enabled_periods = 0;
   q_known = 0;
-  for (int r = 0; r < 3; ++r) d_deg[r][0] = d_deg[r][1] = 0.0;
+  for (int r = 0; r < 3; ++r) d_deg[r][0] = d_deg[r][1] = tau_Nm[r][0] = tau_Nm[r][1] = 0.0;
+  for (int i = 0; i < 2; ++i) joint_load_torque_nm(i) = 0.0;
 }
 
 FUNCTION(_) {
@@ -170,6 +173,8 @@ FUNCTION(_) {
   shift(q_deg, 3);
   shift(d_deg, 3);
   d_deg[0][0] = d_deg[0][1] = 0.0;
+  shift(tau_Nm, 3);
+  tau_Nm[0][0] = tau_Nm[0][1] = 0.0;
   if (blend > 0.0) {
     stiffpath_task_sample s;
     s.t_s = 0.0;
@@ -202,6 +207,7 @@ FUNCTION(_) {
     for (int i = 0; i < 2; ++i) {
       q_deg[0][i] = q0[i] * DEG_PER_RAD;
       d_deg[0][i] = (q[i] - q0[i]) * DEG_PER_RAD;
+      tau_Nm[0][i] = out.load_torque_Nm[i];
     }
     deflection_x_um = out.deflection_m[0] * 1e6;
     deflection_y_um = out.deflection_m[1] * 1e6;
@@ -222,6 +228,7 @@ FUNCTION(_) {
   for (int i = 0; i < 2; ++i) {
     const double correction = spline(d_deg[0][i], d_deg[1][i], d_deg[2][i]);
     joint_correction_deg(i) = correction;
+    joint_load_torque_nm(i) = active ? spline(tau_Nm[0][i], tau_Nm[1][i], tau_Nm[2][i]) : 0.0;
     joint_cmd_out(i) = joint_cmd_in(i) + correction;
     joint_fb_out(i) = joint_fb_in(i) - correction;
     held_out[i] = joint_cmd_out(i);

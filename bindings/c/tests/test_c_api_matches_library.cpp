@@ -68,6 +68,7 @@ TEST_P(CApi, StepEqualsTheLibrarysStepFieldByField) {
       EXPECT_EQ(out.command_m[k], expected.command_m[k]);
       EXPECT_EQ(out.force_N[k], expected.force_N[k]);
       EXPECT_EQ(out.deflection_m[k], expected.deflection_m[k]);
+      EXPECT_EQ(out.load_torque_Nm[k], expected.load_torque_Nm[k]);
     }
     EXPECT_EQ(out.joint, expected.joint);
     EXPECT_EQ(out.outside_grid != 0, expected.outside_grid);

@@ -275,6 +275,14 @@ static void test_options(void) {
     CHECK_NEAR(n.q_rad[0], q_hand[0], 1e-12);
     CHECK_NEAR(n.q_rad[1], q_hand[1], 1e-12);
     CHECK(fabs(f.q_rad[0] - n.q_rad[0]) > 1e-5); /* 15-25 m/s² moves the command by ~0.1 mm: visible */
+    /* The load torque does the work of the inertial force: τ·ω = (m·a)·v when p_cmd = p (ω = J⁻¹·v). */
+    stiffpath_task_sample moving = s;
+    moving.v_m_s[0] = 0.31;
+    moving.v_m_s[1] = -0.17;
+    CHECK(stiffpath_compensator_step(off, &moving, &n) == STIFFPATH_OK);
+    const double power_W = 3.6 * (s.a_m_s2[0] * moving.v_m_s[0] + s.a_m_s2[1] * moving.v_m_s[1]);
+    CHECK_NEAR(n.load_torque_Nm[0] * n.qd_rad_s[0] + n.load_torque_Nm[1] * n.qd_rad_s[1], power_W, 1e-12);
+    CHECK(fabs(n.load_torque_Nm[0]) > 1e-3 && fabs(n.load_torque_Nm[1]) > 1e-3);
     const stiffpath_task_sample outside = sample_at(0.150, 0.0, 0.0, 5.0);
     CHECK(stiffpath_compensator_step(strict, &outside, &f) == STIFFPATH_OUTSIDE_GRID);
   }

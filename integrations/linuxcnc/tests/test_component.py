@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """stiffpathcomp's behaviour around the step, under halrun with a scripted Cartesian command (streamer) and a
 simulated drive: pass-through while disabled, the blend's delayed ramp, the correction taken back out of the
-feedback, the hold and fault on a refused step, and the fresh start after a reset.
+feedback, the load-torque feed-forward, the hold and fault on a refused step, and the fresh start after a reset.
 usage: test_component.py WORK_DIR (needs the modules installed, see linuxcnc_env.sh; run as root or not)"""
 import math
 import os
@@ -50,7 +50,7 @@ with open(os.path.join(work, "component.hal"), "w") as f:
     f.write("""loadrt threads name1=servo-thread period1=%d fp1=1
 loadrt streamer depth=%d cfg=uffffbb
 loadrt stiffpathcomp robot=oc-gu model=thesis-oc
-loadrt sampler depth=%d cfg=uffffffbsuf
+loadrt sampler depth=%d cfg=uffffffbsufff
 setp stiffpathcomp.ramp-time %g
 addf streamer.0 servo-thread
 addf stiffpathcomp servo-thread
@@ -72,6 +72,8 @@ net fault stiffpathcomp.fault => sampler.0.pin.7
 net status stiffpathcomp.status => sampler.0.pin.8
 net refusals stiffpathcomp.refusals => sampler.0.pin.9
 net blend stiffpathcomp.blend => sampler.0.pin.10
+net tau0 stiffpathcomp.joint.0.load-torque-nm => sampler.0.pin.11
+net tau1 stiffpathcomp.joint.1.load-torque-nm => sampler.0.pin.12
 loadusr -w halstreamer commands.stream
 start
 loadusr -w halsampler -n %d record.txt
@@ -93,7 +95,8 @@ with open(os.path.join(work, "record.txt")) as f:
         k = int(v[0]) - 1
         if k >= 0 and k not in rows:  # the stream's last line is held once it has run dry
             rows[k] = dict(out=(float(v[1]), float(v[2])), fb=(float(v[3]), float(v[4])), corr=(float(v[5]), float(v[6])),
-                           fault=v[7] == "1", status=int(v[8]), refusals=int(v[9]), blend=float(v[10]))
+                           fault=v[7] == "1", status=int(v[8]), refusals=int(v[9]), blend=float(v[10]),
+                           tau=(float(v[11]), float(v[12])))
 check(sorted(rows) == list(range(END)), "every command was played once")
 cmd_in = {k: ik_deg(min(cartesian(k)[0], 290.0), 0.0) for k in range(END)}
 EPS = 2e-6  # halsampler prints six decimals
@@ -130,7 +133,34 @@ for k in range(RESET_AT, END):
     expected = min(1.0, max(0.0, (k - (RESET_AT + 3)) * T / RAMP_S))
     check(not r["fault"] and r["refusals"] == 1 and abs(r["blend"] - expected) <= EPS, "period %d: reset, ramping afresh" % k)
     check(close(r["out"], cmd_in[k]), "period %d: at rest after the reset, out = in" % k)
-print("largest correction %.4f degree, refused with status %d" % (largest, rows[JUMP_AT]["status"]))
+
+
+def load_torque_Nm(j):  # tau = J^T m a at c[j], a the centred second difference; J = (d theta / d p)^-1 by differences
+    (x0, y0), (x1, y1), (x2, y2) = cartesian(j - 1), cartesian(j), cartesian(j + 1)
+    F = (3.6 * (x2 - 2 * x1 + x0) * 1e-3 / T**2, 3.6 * (y2 - 2 * y1 + y0) * 1e-3 / T**2)  # m a, thesis §4.2 mass
+    h = 1e-4  # mm
+    a, c = [(u - v) / (2 * h * 1e-3) for u, v in zip(ik_deg(x1 + h, y1), ik_deg(x1 - h, y1))]
+    b, d = [(u - v) / (2 * h * 1e-3) for u, v in zip(ik_deg(x1, y1 + h), ik_deg(x1, y1 - h))]
+    a, b, c, d = (math.radians(u) for u in (a, b, c, d))  # rad/m: [[a, b], [c, d]] = J^-1
+    det = a * d - b * c
+    J = ((d / det, -b / det), (-c / det, a / det))
+    return tuple(J[0][i] * F[0] + J[1][i] * F[1] for i in range(2))
+
+
+largest_tau = 0.0
+for k in range(MOVE_FROM, JUMP_AT - 1):
+    if rows[k - 3]["blend"] == 0.0:
+        continue
+    t = [load_torque_Nm(j) for j in (k - 1, k - 2, k - 3)]
+    expected = tuple((t[2][i] + 4 * t[1][i] + t[0][i]) / 6 for i in range(2))
+    got = rows[k]["tau"]
+    check(all(abs(g - e) <= 2e-3 * abs(e) + 1e-5 for g, e in zip(got, expected)),
+          "period %d: load torque %s N m, expected J^T m a = %s" % (k, got, expected))
+    largest_tau = max(largest_tau, abs(got[0]), abs(got[1]))
+check(largest_tau > 0.5, "the 1 g motion loads the drives (largest load torque %g N m)" % largest_tau)
+check(all(rows[k]["tau"] == (0.0, 0.0) for k in range(JUMP_AT, RESET_AT)), "no load torque while faulted")
+print("largest correction %.4f degree, largest load torque %.3f N m, refused with status %d"
+      % (largest, largest_tau, rows[JUMP_AT]["status"]))
 shutil.rmtree(work, ignore_errors=True)
 print("FAILED %d checks" % len(failures) if failures else "PASS")
 sys.exit(1 if failures else 0)
