@@ -24,20 +24,6 @@ struct ScanCliOptions {
   CLI::Option* shape_option = nullptr;
 };
 
-int parse_sides(const std::string& shape) {
-  if (shape == "line") return 1;
-  if (shape == "triangle") return 3;
-  if (shape == "any") return 0;
-  if (shape.rfind("polyline:", 0) == 0) {
-    const std::string n = shape.substr(9);
-    if (!n.empty() && n.size() <= 2 && n.find_first_not_of("0123456789") == std::string::npos) {
-      const int sides = std::stoi(n);
-      if (sides >= 1 && sides <= 64) return sides;
-    }
-  }
-  throw Error(fmt::format("--shape: expected line, triangle, polyline:N with N in 1..64, or any, got '{}'", shape));
-}
-
 // "--roi X,Y,W,H" in mm from the image's top-left corner, or with a unit suffix "…mm" / "…px".
 struct Roi {
   double v[4] = {0.0, 0.0, 0.0, 0.0};  // x, y, width, height
@@ -100,10 +86,13 @@ void print_result(const nlohmann::json& out, const std::string& indent) {
 
 void run_scan(const ScanCliOptions& o) {
   vision::ScanOptions options;
-  const bool shape_given = o.shape_option->count() > 0;
-  options.sides = parse_sides(o.all_marks && !shape_given ? "any" : o.shape);
-  if (o.shape == "triangle") options.metrics.closure = evaluation::Closure::closed;
-  if (o.shape == "line" && shape_given) options.metrics.closure = evaluation::Closure::open;
+  if (o.shape_option->count() > 0) {
+    const vision::ScanShape shape = vision::parse_scan_shape(o.shape, "--shape");
+    options.sides = shape.sides;
+    options.metrics.closure = shape.closure;
+  } else {
+    options.sides = o.all_marks ? 0 : 1;  // a line, or any shape on a plate; closure found on the scan
+  }
   if (!(o.cutoff_mm >= 0.0) || !(o.trim_mm >= 0.0)) throw Error("--spline-cutoff-mm and --corner-trim-mm must be >= 0");
   if (!(o.min_mark_mm > 0.0) || !std::isfinite(o.min_mark_mm)) throw Error("--min-mark-mm must be positive");
   options.metrics.smoothing_cutoff_m = o.cutoff_mm * 1e-3;

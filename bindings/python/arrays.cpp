@@ -56,6 +56,13 @@ py::array_t<double> points_array(const std::vector<Vec2>& points) {
   return out;
 }
 
+py::array_t<double> point_array(const Vec2& point) {
+  py::array_t<double> out(py::ssize_t{2});
+  out.mutable_at(0) = point.x();
+  out.mutable_at(1) = point.y();
+  return out;
+}
+
 void ensure_record_dtypes() {
   static bool registered = false;  // guarded by the GIL
   if (registered) return;

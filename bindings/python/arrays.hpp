@@ -34,6 +34,9 @@ std::pair<py::array_t<double>, py::array_t<double>> broadcast_pairs(const py::ha
 //! A list of points as an (N, 2) float64 array.
 py::array_t<double> points_array(const std::vector<Vec2>& points);
 
+//! One point as a (2,) float64 array.
+py::array_t<double> point_array(const Vec2& point);
+
 //! "(x = 222.132 mm, y = 37.5 mm)" for messages.
 std::string describe_point(const Vec2& p_m);
 

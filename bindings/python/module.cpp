@@ -45,9 +45,23 @@ PYBIND11_MODULE(stiffpath, m) {
           return name == "trajectory_dtype" ? py::dtype::of<stiffpath::python::TrajectoryRow>()
                                             : py::dtype::of<stiffpath::python::JointRow>();
         }
+        if (name == "vision") {
+          // The scan part is a module of its own (_stiffpath_vision, beside this one), built with OpenCV: imported
+          // here, on first use, so that `import stiffpath` does not load OpenCV.
+          py::module_ vision;
+          try {
+            vision = py::module_::import("_stiffpath_vision");
+          } catch (py::error_already_set& e) {
+            if (!e.matches(PyExc_ModuleNotFoundError)) throw;
+            throw py::attribute_error("stiffpath.vision: this build of stiffpath has no vision part (it needs OpenCV)");
+          }
+          py::module_::import("sys").attr("modules")["stiffpath.vision"] = vision;
+          py::module_::import("stiffpath").attr("vision") = vision;
+          return vision;
+        }
         throw py::attribute_error("module 'stiffpath' has no attribute '" + name + "'");
       },
-      "trajectory_dtype and joints_dtype, made on first use (PEP 562).");
+      "trajectory_dtype and joints_dtype, made on first use, and vision, imported on first use (PEP 562).");
 
   stiffpath::python::add_kinematics(m);
   stiffpath::python::add_compliance(m);

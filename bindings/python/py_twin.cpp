@@ -210,9 +210,24 @@ void add_twin(py::module_& m) {
       .def_readonly("deviation_area_m2", &evaluation::SideMetrics::deviation_area_m2)
       .def_readonly("max_deviation_m", &evaluation::SideMetrics::max_deviation_m)
       .def_readonly("straightness_m", &evaluation::SideMetrics::straightness_m)
-      .def_readonly("point_count", &evaluation::SideMetrics::point_count);
+      .def_readonly("point_count", &evaluation::SideMetrics::point_count)
+      .def_property_readonly("start_m", [](const evaluation::SideMetrics& s) { return point_array(s.start); },
+                             "start on the fitted line (m): the corner, or the free end's extreme projection")
+      .def_property_readonly("end_m", [](const evaluation::SideMetrics& s) { return point_array(s.end); },
+                             "end on the fitted line (m), likewise")
+      .def_readonly("start_is_corner", &evaluation::SideMetrics::start_is_corner)
+      .def_readonly("end_is_corner", &evaluation::SideMetrics::end_is_corner);
+  py::class_<evaluation::CornerReport>(m, "CornerReport", "A corner between two consecutive sides of a marked path (SI).")
+      .def_property_readonly("position_m", [](const evaluation::CornerReport& c) { return point_array(c.position); },
+                             "intersection of the two sides' fitted lines (m)")
+      .def_readonly("angle_rad", &evaluation::CornerReport::angle_rad, "interior angle (π = no corner, π/3 in an equilateral triangle)")
+      .def_readonly("side_before", &evaluation::CornerReport::side_before, "0-based index of the side it ends")
+      .def_readonly("side_after", &evaluation::CornerReport::side_after, "0-based index of the side it starts")
+      .def_readonly("path_distance_m", &evaluation::CornerReport::path_distance_m,
+                    "distance from position_m to the nearest path point (m); None when the points do not reach it (scans)");
   py::class_<evaluation::PathMetrics>(m, "PathMetrics", "Length and deviation from straightness of a marked path (§4.7, SI).")
       .def_readonly("sides", &evaluation::PathMetrics::sides)
+      .def_readonly("corners", &evaluation::PathMetrics::corners, "CornerReport of each corner: N − 1 open, N closed (corner k ends side k)")
       .def_readonly("closed", &evaluation::PathMetrics::closed)
       .def_readonly("length_m", &evaluation::PathMetrics::length_m, "sum of the sides' lengths")
       .def_readonly("deviation_area_m2", &evaluation::PathMetrics::deviation_area_m2, "area between spline and line(s)")

@@ -83,6 +83,16 @@ nlohmann::json to_json(const ScanResult& result);
 //! The shape measured, in the words of ScanOptions: "line", "triangle" (three sides, closed) or "polyline:N".
 std::string shape_name(const ScanResult& result);
 
+//! The sides and closure of a shape named in those words.
+struct ScanShape {
+  int sides = 1;                                              //!< ScanOptions::sides (0 = any)
+  evaluation::Closure closure = evaluation::Closure::automatic;  //!< PathMetricsOptions::closure
+};
+//! Parses "line" (1 side, open), "triangle" (3 sides, closed), "polyline:N" (N sides, N in 1..64, closure
+//! found on the scan) or "any" (sides found on the scan). Throws stiffpath::Error starting with `what`
+//! (the option's name, e.g. "--shape") for anything else.
+ScanShape parse_scan_shape(const std::string& shape, const std::string& what);
+
 //! One dark feature of a plate and what became of it.
 struct PlateMark {
   int index = 0;          //!< 1-based, in the order of the features' top edges (reading order)
