@@ -99,12 +99,12 @@ void run_scan(const ScanCliOptions& o) {
   options.metrics.corner_trim_m = o.trim_mm * 1e-3;
   options.min_plate_mark_m = o.min_mark_mm * 1e-3;
   options.label = o.image;
-  const auto roi = o.roi.empty() ? std::optional<Roi>{} : parse_roi(o.roi);
+  const Roi roi = o.roi.empty() ? Roi{} : parse_roi(o.roi);  // parsed before the image is read: a typo fails fast
   const auto dpi = o.dpi_option->count() > 0 ? std::optional<double>(o.dpi) : std::nullopt;
   Progress progress("scan", o.quiet);
   progress.update(0.0, "reading the image");
   const vision::ScanImage scan = vision::load_scan(o.image, dpi);
-  if (roi) options.roi_px = roi_pixels(*roi, o.roi, scan);
+  if (!o.roi.empty()) options.roi_px = roi_pixels(roi, o.roi, scan);
   options.progress = progress.callback();
 
   nlohmann::json out;
