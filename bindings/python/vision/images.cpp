@@ -48,4 +48,6 @@ py::array image_array(const cv::Size& size, int type, cv::Mat& view) {
   return out;
 }
 
+std::string path_text(const py::handle& path) { return py::str(py::module_::import("os").attr("fspath")(path)); }
+
 }  // namespace stiffpath::python

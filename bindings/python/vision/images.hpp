@@ -6,6 +6,8 @@
 
 #include <opencv2/core.hpp>
 
+#include <string>
+
 namespace stiffpath::python {
 
 namespace py = pybind11;
@@ -25,5 +27,8 @@ ImageArray image_view(const py::handle& value, const char* what, bool colour);
 //! A new C-contiguous array for an image of `size` and OpenCV `type` (CV_8U/CV_16U, one or three channels):
 //! (H, W) or (H, W, 3), uint8 or uint16. `view` receives a cv::Mat over its pixels.
 py::array image_array(const cv::Size& size, int type, cv::Mat& view);
+
+//! A file name given as str or os.PathLike, as text (os.fspath).
+std::string path_text(const py::handle& path);
 
 }  // namespace stiffpath::python

@@ -134,7 +134,7 @@ void add_render(py::module_& m) {
       .def_readonly("closed", &PyRendered::closed)
       .def_readonly("truth", &PyRendered::truth, "stiffpath.PathMetrics of the exact centre path: what a scan should measure")
       .def(
-          "save", [](const PyRendered& r, const py::object& path) { save(py::str(py::module_::import("os").attr("fspath")(path)), r.image, r.dpi); },
+          "save", [](const PyRendered& r, const py::object& path) { save(path_text(path), r.image, r.dpi); },
           py::arg("path"), "Writes the image as save_image(path, image, dpi) does.");
 
   m.def("render_scan", &render_scan, py::kw_only(), py::arg("shape") = "line", py::arg("length_m") = 0.1,
@@ -161,7 +161,7 @@ void add_render(py::module_& m) {
         "(BGR), seed. corner_trim_m: the truth's corner trim (m), as scan()'s. At most 200 Mpx. Releases the GIL.");
 
   m.def(
-      "save_image", [](const py::object& path, const py::handle& image, double dpi) { save(py::str(py::module_::import("os").attr("fspath")(path)), image, dpi); },
+      "save_image", [](const py::object& path, const py::handle& image, double dpi) { save(path_text(path), image, dpi); },
       py::arg("path"), py::arg("image"), py::arg("dpi"),
       "Writes an image (uint8 or uint16, (H, W) grey or (H, W, 3) BGR) to a .png, .tif/.tiff or .jpg/.jpeg file with\n"
       "`dpi` (dots per inch) in its metadata, so that scan() reads the resolution back. The file appears only when\n"

@@ -31,7 +31,7 @@ struct Source {
 Source read_source(const py::handle& image, std::optional<double> dpi) {
   Source source;
   if (py::isinstance<py::str>(image) || py::hasattr(image, "__fspath__")) {
-    source.label = py::str(py::module_::import("os").attr("fspath")(image));
+    source.label = path_text(image);
     {
       py::gil_scoped_release unlocked;
       source.scan = vision::load_scan(source.label, dpi);
