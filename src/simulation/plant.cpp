@@ -74,10 +74,10 @@ Vec2 Plant::static_joint_error(const Vec2& q_rad, const Vec2& force_N) const noe
 }
 
 void Plant::step(const JointReference& r, double dt, const Vec2& external_force_N) noexcept {
-  const Vec2 pb0 = robot_.forward(state_.q_rad);
-  const Mat2 j0 = robot_.jacobian(state_.q_rad);
+  if (!at_cache()) update_cache(robot_.forward(state_.q_rad), robot_.jacobian(state_.q_rad));
+  const Vec2 pb0 = cache_pb_;
+  const Mat2 j0 = cache_J_;
   const Vec2 vb0 = j0 * state_.qd_rad_s;
-  if (options_.servo_feels_load && !(cache_valid_ && cache_q_ == state_.q_rad)) update_cache(pb0);
   if (options_.servo_feels_load) {
     // Drive: torque feed-forward, P/P cascade and the platform's load; the velocity loop's damping is taken
     // implicitly (on J_m alone it is far faster than the step): J_m q̇⁺ = J_m q̇ + dt(τ − K_v q̇⁺).
@@ -101,15 +101,18 @@ void Plant::step(const JointReference& r, double dt, const Vec2& external_force_
   }
   state_.q_rad += dt * state_.qd_rad_s;
   // Tip on its spring and damper to the new base point.
-  const Vec2 pb = robot_.forward(state_.q_rad);
-  const Vec2 vb = robot_.jacobian(state_.q_rad) * state_.qd_rad_s;
-  update_cache(pb);  // K and D at the new base point serve this step's tip and the next step's joints
+  // p_b, J, K and D at the new joints serve this step's tip and the next step's joints.
+  update_cache(robot_.forward(state_.q_rad), robot_.jacobian(state_.q_rad));
+  const Vec2 pb = cache_pb_;
+  const Vec2 vb = cache_J_ * state_.qd_rad_s;
   const Vec2 force = -cache_K_ * (state_.tip_m - pb) - cache_D_ * (state_.tip_m_s - vb) + external_force_N;
   state_.tip_m_s += (dt / mass_) * force;
   state_.tip_m += dt * state_.tip_m_s;
 }
 
-void Plant::update_cache(const Vec2& pb) noexcept {
+void Plant::update_cache(const Vec2& pb, const Mat2& jacobian) noexcept {
+  cache_pb_ = pb;
+  cache_J_ = jacobian;
   cache_K_ = stiffness(pb);
   cache_D_ = 2.0 * options_.tip_damping_ratio * std::sqrt(mass_) *
              sqrt_spd(lever_ ? Mat2(0.5 * (cache_K_ + cache_K_.transpose())) : cache_K_);

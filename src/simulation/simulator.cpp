@@ -85,16 +85,19 @@ SimulationResult simulate(const JointSource& source, const kinematics::Robot& ro
       stroke.commanded.push_back(a.target_m);
     }
     const int n = std::max(1, static_cast<int>(std::ceil(h * rate - 1e-9)));
+    JointReference start = interpolate(a, *b, 0.0);
     for (int i = 1; i <= n; ++i) {
       // The servo law sees the reference at the start of the step, where its state is (a symplectic
-      // Euler step then follows a ramp exactly); the error is checked against the end of the step.
-      plant.step(interpolate(a, *b, static_cast<double>(i - 1) / n), h / n);
+      // Euler step then follows a ramp exactly); the error is checked against the end of the step,
+      // whose reference starts the next step.
+      plant.step(start, h / n);
       const JointReference r = interpolate(a, *b, static_cast<double>(i) / n);
       ++out.steps;
       out.peak_deflection_m = std::max(out.peak_deflection_m, deflection());
       out.peak_tracking_error_m =
           std::max(out.peak_tracking_error_m, (plant.base() - robot.forward(r.q_rad)).norm());
       if (a.laser_on && out.steps % mark_every == 0) stroke.marked.push_back(plant.state().tip_m);
+      start = r;
     }
     check_finite(plant, b->t_s);
     if (a.laser_on && !b->laser_on) end_stroke(b->target_m, b->t_s);

@@ -96,8 +96,12 @@ class Plant {
     state_ = state;
     cache_valid_ = false;
   }
-  [[nodiscard]] Vec2 base() const noexcept { return robot_.forward(state_.q_rad); }
-  [[nodiscard]] Vec2 base_velocity() const noexcept { return robot_.jacobian(state_.q_rad) * state_.qd_rad_s; }
+  //! p_b = FK(q) (eq. 2.1), from the step's cache when it holds the current joints.
+  [[nodiscard]] Vec2 base() const noexcept { return at_cache() ? cache_pb_ : robot_.forward(state_.q_rad); }
+  //! ṗ_b = J(q)·q̇.
+  [[nodiscard]] Vec2 base_velocity() const noexcept {
+    return (at_cache() ? cache_J_ : robot_.jacobian(state_.q_rad)) * state_.qd_rad_s;
+  }
   //! Static joint error under a constant tip force F (rad): Jᵀ·F/(K_v·K_p) per joint, at q.
   [[nodiscard]] Vec2 static_joint_error(const Vec2& q_rad, const Vec2& force_N) const noexcept;
   //! The drive's tuning inertia per joint (kg·m²): J_m + m_ff·(JᵀJ)_ii at the centre of C_true's rectangle.
@@ -123,11 +127,13 @@ class Plant {
   Vec2 kv_ = Vec2::Zero();  // velocity-loop gains (N·m·s/rad)
   double kp_ = 0.0;         // position-loop gain (1/s)
   PlantState state_;
-  // K and D at the base point of the joints cache_q_ (the end of one step is the start of the next).
-  void update_cache(const Vec2& pb) noexcept;
+  // The base point p_b = FK(q), J(q), and K and D at p_b, for the joints cache_q_: the end of one step
+  // is the start of the next, so each step evaluates the kinematics and C_true once.
+  void update_cache(const Vec2& pb, const Mat2& jacobian) noexcept;
+  [[nodiscard]] bool at_cache() const noexcept { return cache_valid_ && cache_q_ == state_.q_rad; }
   bool cache_valid_ = false;
-  Vec2 cache_q_ = Vec2::Zero();
-  Mat2 cache_K_ = Mat2::Zero(), cache_D_ = Mat2::Zero();
+  Vec2 cache_q_ = Vec2::Zero(), cache_pb_ = Vec2::Zero();
+  Mat2 cache_J_ = Mat2::Zero(), cache_K_ = Mat2::Zero(), cache_D_ = Mat2::Zero();
 };
 
 //! The symmetric square root of a symmetric positive definite 2×2 matrix (closed form:
