@@ -1,0 +1,50 @@
+// A smooth compliance field sampled once on a fine lattice and read back by bicubic interpolation: the twin's C_true at table speed.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "stiffpath/compliance/model.hpp"
+
+namespace stiffpath::simulation {
+
+//! `base` sampled on a square lattice of `spacing_m` over `region` (plus one node of stencil beyond
+//! it on every side), evaluated by Catmull–Rom bicubic interpolation of the lattice: C¹, exact for
+//! fields linear in x and y, error O(h³·|∂³C|). Every cell is checked at its centre when the table is
+//! made; a cell that reads more than 10⁻⁶ (relative) off there, and every point outside `region`, is
+//! evaluated by `base` itself, so the field is unchanged wherever the lattice cannot follow it. For fields that are expensive to evaluate and
+//! smooth on the lattice's scale — the structural C_true, an inverse kinematics and a network of
+//! arms per point — which the twin evaluates at every 20 kHz step.
+//! `base` must be thread-safe to read; the table is filled in the constructor and only read after.
+class TabulatedModel final : public compliance::Model {
+ public:
+  TabulatedModel(std::shared_ptr<const compliance::Model> base, const compliance::GridBounds& region, double spacing_m);
+
+  [[nodiscard]] std::string method() const override { return base_->method(); }
+  [[nodiscard]] compliance::Mat2 compliance(const compliance::Vec2& p) const noexcept override;
+  [[nodiscard]] compliance::GridBounds bounds() const noexcept override { return base_->bounds(); }
+  //! The base's parameters, with the lattice's spacing and region.
+  [[nodiscard]] nlohmann::json parameters() const override;
+
+  [[nodiscard]] const compliance::GridBounds& region() const noexcept { return region_; }
+  [[nodiscard]] double spacing_m() const noexcept { return h_; }
+  [[nodiscard]] std::size_t nodes() const noexcept { return values_.size(); }
+  //! Cells left to the base (not smooth enough on the lattice's scale).
+  [[nodiscard]] std::size_t exact_cells() const noexcept;
+
+ private:
+  std::shared_ptr<const compliance::Model> base_;
+  compliance::GridBounds region_;
+  double h_;
+  double x0_ = 0.0, y0_ = 0.0;  // the lattice's node (0, 0), one spacing outside the region's corner
+  std::size_t nx_ = 0, ny_ = 0;
+  std::vector<compliance::Mat2> values_;  // node (i, j) at (x0 + i·h, y0 + j·h), index i·ny + j
+  std::vector<std::uint8_t> exact_;       // per cell (i, j), 1 ≤ i ≤ nx − 3: evaluate the base there
+  [[nodiscard]] compliance::Mat2 interpolate(std::size_t i, std::size_t j, double tx, double ty) const noexcept;
+};
+
+//! C_true's default lattice: 1 mm over the measured rectangle grown by max(50 mm, its larger side / 4).
+std::shared_ptr<const compliance::Model> tabulate_true_field(std::shared_ptr<const compliance::Model> base);
+
+}  // namespace stiffpath::simulation
