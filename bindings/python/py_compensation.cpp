@@ -133,6 +133,8 @@ void add_compensation(py::module_& m) {
       .def_property_readonly("command_m", [](const JointCommand& c) { return py::make_tuple(c.command_m.x(), c.command_m.y()); }, "corrected target p_cmd = p − k·Δ")
       .def_property_readonly("force_N", [](const JointCommand& c) { return py::make_tuple(c.force_N.x(), c.force_N.y()); }, "D'Alembert force F = −m·a (eq. 4.4)")
       .def_property_readonly("deflection_m", [](const JointCommand& c) { return py::make_tuple(c.deflection_m.x(), c.deflection_m.y()); }, "predicted Δ = C(p)·F")
+      .def_property_readonly("load_torque_Nm", [](const JointCommand& c) { return py::make_tuple(c.load_torque_Nm.x(), c.load_torque_Nm.y()); },
+                             "the platform's inertial load on the joints, τ = Jᵀ·m·a (N·m): the drives' torque feed-forward")
       .def_property_readonly("status", [](const JointCommand& c) { return std::string(compensation::describe(c.status)); }, "'ok' or why the command must not be sent")
       .def_property_readonly("ok", [](const JointCommand& c) { return c.status == compensation::Status::ok; })
       .def_readonly("joint", &JointCommand::joint, "offending joint (0, 1) for a joint-limit status, else −1")

@@ -107,6 +107,11 @@ def test_quasi_static_compensation_follows_fig_4_3(robot, trajectory):
     s = trajectory[k]
     c = compensator.step(s["t_s"], s["p_m"], s["v_m_s"], s["a_m_s2"], s["j_m_s3"])
     assert c.ok and c.q_rad == pytest.approx(tuple(joints["q_rad"][k]), abs=1e-12)
+    # Its torque feed-forward is the platform's D'Alembert load through the Jacobian at the command: τ = Jᵀ·m·a.
+    J = np.asarray(robot.jacobian(c.q_rad))
+    expected = J.T @ (robot.moving_mass_kg * np.asarray(s["a_m_s2"]))
+    assert np.max(np.abs(expected)) > 0.1
+    np.testing.assert_allclose(c.load_torque_Nm, expected, rtol=1e-9, atol=1e-12)
     # Without compensation the joints put the end point on the planned path.
     plain = stiffpath.Compensator(robot, enabled=False).compensate(trajectory, smooth_s=0.0)
     np.testing.assert_allclose(robot.fk(plain["q_rad"]), trajectory["p_m"], atol=1e-12)
