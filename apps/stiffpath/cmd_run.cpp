@@ -29,7 +29,7 @@ struct RunArgs {
   double gain = 1.0;
   std::string accel_source = "analytic";
   std::string method = "dynamic";
-  double damping_ratio = compensation::CompensatorOptions{}.damping_ratio;
+  std::optional<double> damping_ratio;  // unset: the robot file's tip_damping_ratio
   double smooth_ms = compensation::kDefaultSmoothing_s * 1e3;
   std::string shaper = "none";
   std::string outside;
@@ -87,9 +87,10 @@ void run(const RunArgs& a) {
     model_name = loaded.label;
     model.reset(loaded.model.release());
   }
+  const double damping_ratio = a.damping_ratio.value_or(robot.tip_damping_ratio);
   compensation::CompensatorOptions comp_options{a.gain, !a.no_compensation, true};
   comp_options.method = compensation::parse_method(a.method);
-  comp_options.damping_ratio = a.damping_ratio;
+  comp_options.damping_ratio = damping_ratio;
   const compensation::Compensator compensator(robot, model, comp_options);
   const auto shaper = compensation::parse_filter_kind(a.shaper);
   if (shaper == compensation::FilterKind::smooth) throw Error("--shaper: expected none, zv or zvd, got 'smooth' (see --smooth-ms)");
@@ -113,7 +114,7 @@ void run(const RunArgs& a) {
   compensation::RunFilterOptions filter_options;
   filter_options.smooth_s = a.smooth_ms * 1e-3;
   filter_options.shaper = shaper;
-  filter_options.damping_ratio = a.damping_ratio;
+  filter_options.damping_ratio = damping_ratio;
   filter_options.min_frequency_hz = lowest_hz;
   compensation::FilterChain filters = compensation::make_run_filters(options.rate_hz, filter_options, model, robot.moving_mass_kg);
   const auto acceleration = job::parse_acceleration_source(a.accel_source);
@@ -143,7 +144,7 @@ void run(const RunArgs& a) {
                 {"gain", a.no_compensation ? 0.0 : a.gain},
                 {"acceleration_source", a.accel_source},
                 {"method", compensating ? a.method : "none"},
-                {"damping_ratio", tidy(a.damping_ratio)},
+                {"damping_ratio", tidy(damping_ratio)},
                 {"smooth_ms", tidy(a.smooth_ms)},
                 {"shaper", a.shaper},
                 {"jerk_m_s3", tidy(options.limits.max_jerk_m_s3)},
@@ -169,7 +170,7 @@ void run(const RunArgs& a) {
              model_name, compensating && a.gain != 1.0 ? fmt::format(" (gain {:g})", a.gain) : "");
   if (compensating) {
     fmt::print(info, "  {} compensation (damping ratio {:g}), reference smoothed over {:g} ms, shaper {}, jerk {:.0f} m/s^3\n",
-               a.method, a.damping_ratio, a.smooth_ms, a.shaper, options.limits.max_jerk_m_s3);
+               a.method, damping_ratio, a.smooth_ms, a.shaper, options.limits.max_jerk_m_s3);
   }
   fmt::print(info, "  {} samples at {:g} Hz, duration {:.4f} s\n", s.samples, options.rate_hz, s.duration_s);
   fmt::print(info, "  peak D'Alembert force {:.1f} N, predicted deflection {:.1f} um, correction {:.1f} um\n", s.peak_force_N,
@@ -199,9 +200,10 @@ void add_run_command(CLI::App& app) {
                   "dynamic (tip model with damping inverted) or quasi-static (the thesis's static deflection)")
       ->check(CLI::IsMember({"dynamic", "quasi-static"}))
       ->capture_default_str();
-  cmd->add_option("--damping-ratio", a->damping_ratio, "Damping ratio of the tip's modes assumed by dynamic compensation")
-      ->check(within(0.0, 0.9, ""))
-      ->capture_default_str();
+  cmd->add_option("--damping-ratio", a->damping_ratio,
+                  "Damping ratio of the tip's modes assumed by dynamic compensation and the shapers (default: the "
+                  "robot file's tip_damping_ratio, 0.05 when it gives none)")
+      ->check(within(0.0, 0.9, ""));
   cmd->add_option("--smooth-ms", a->smooth_ms,
                   "Two moving averages of half this width over the planned reference (ms; 0: off): continuous "
                   "jerk and snap, so commands without velocity steps")

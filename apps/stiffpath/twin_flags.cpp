@@ -24,8 +24,9 @@ void add_twin_flags(CLI::App* cmd, TwinFlags& f, simulation::SimulationOptions& 
   cmd->add_option("--mass-scale", sim.mass_scale, "Plant mass / the mass the controller and compensation assume")
       ->check(within(0.1, 5.0, ""))->capture_default_str();
   cmd->add_flag("--no-cg-lever", f.no_cg_lever, "Put the CG at the measured point (no platform tilt)");
-  cmd->add_option("--damping-ratio", sim.plant.tip_damping_ratio, "Damping ratio of the tip's modes")
-      ->check(within(0.0, 2.0, ""))->capture_default_str();
+  cmd->add_option("--damping-ratio", sim.plant.tip_damping_ratio,
+                  "Damping ratio of the tip's modes (default: the robot file's tip_damping_ratio, 0.05 when it gives none)")
+      ->check(within(0.0, 2.0, ""));
   cmd->add_option("--servo-bandwidth-hz", sim.plant.servo_bandwidth_hz, "Joint position-loop bandwidth")
       ->check(within(1.0, 2000.0, ""))->capture_default_str();
   cmd->add_option("--step-rate-hz", sim.plant.step_rate_hz, "Integration rate")

@@ -99,7 +99,7 @@ stiffpath_options stiffpath_default_options(void) noexcept {
           defaults.check_limits ? 1 : 0,
           STIFFPATH_OUTSIDE_MODEL_DEFAULT,
           defaults.method == sp::compensation::Method::dynamic ? STIFFPATH_METHOD_DYNAMIC : STIFFPATH_METHOD_QUASI_STATIC,
-          defaults.damping_ratio};
+          -1.0};
 }
 
 stiffpath_robot* stiffpath_robot_load(const char* robot, char* error, size_t error_size) noexcept {
@@ -166,7 +166,8 @@ stiffpath_compensator* stiffpath_compensator_create(const char* robot, const cha
           case STIFFPATH_METHOD_DYNAMIC: co.method = sp::compensation::Method::dynamic; break;
           default: throw sp::Error("method " + std::to_string(o.method) + " is not one of 0..1");
         }
-        co.damping_ratio = o.damping_ratio;
+        if (std::isnan(o.damping_ratio)) throw sp::Error("damping_ratio is NaN");
+        if (o.damping_ratio >= 0.0) co.damping_ratio = o.damping_ratio;  // negative: the robot file's
         return new stiffpath_compensator(std::move(r), shared, co);
       },
       error, error_size);

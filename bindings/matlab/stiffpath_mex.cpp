@@ -249,10 +249,10 @@ void compensate(int, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
   }
   comp.gain = number_field(options, "gain", comp.gain);
   comp.method = stiffpath::compensation::parse_method(text_field(options, "method", "dynamic"));
-  comp.damping_ratio = number_field(options, "damping_ratio", comp.damping_ratio);
+  comp.damping_ratio = number_field(options, "damping_ratio", robot.tip_damping_ratio);
   filter.smooth_s = number_field(options, "smooth_s", filter.smooth_s);
   filter.shaper = stiffpath::compensation::parse_filter_kind(text_field(options, "shaper", "none"));
-  filter.damping_ratio = comp.damping_ratio;
+  filter.damping_ratio = *comp.damping_ratio;
   const std::shared_ptr<const stiffpath::compliance::Model> model(std::move(loaded.model));
   const stiffpath::compensation::Compensator compensator(robot, model, comp);
   const Matrix trajectory = matrix_arg(prhs[3], "T", 7, 10);

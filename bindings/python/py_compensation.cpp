@@ -71,7 +71,8 @@ struct PyCompensator {
 };
 
 PyCompensator make_compensator(const kinematics::Robot& robot, const std::optional<PyModel>& model, double gain,
-                               bool enabled, bool check_limits, const std::string& method, double damping_ratio) {
+                               bool enabled, bool check_limits, const std::string& method,
+                               std::optional<double> damping_ratio) {
   PyModel used = model ? *model : to_py_model(compliance::load_robot_model(robot));
   if (model) {
     compliance::LoadedModel check{nullptr, used.provenance, used.label};
@@ -91,7 +92,7 @@ compensation::FilterChain job_filters(const PyCompensator& c, const TrajectoryRo
   compensation::RunFilterOptions options;
   options.smooth_s = smooth_s;
   options.shaper = compensation::parse_filter_kind(shaper);
-  options.damping_ratio = c.compensator->options().damping_ratio;
+  options.damping_ratio = *c.compensator->options().damping_ratio;
   auto region = compliance::GridBounds::none();
   for (std::size_t i = 0; i < n; ++i) region.include(Vec2(rows[i].p_m[0], rows[i].p_m[1]));
   return compensation::make_run_filters(rate_hz, options, c.model.model, c.compensator->robot().moving_mass_kg, region);
@@ -150,12 +151,12 @@ void add_compensation(py::module_& m) {
                             "reach and joint-limit checks.")
       .def(py::init(&make_compensator), py::arg("robot"), py::arg("model") = py::none(), py::arg("gain") = 1.0,
            py::arg("enabled") = true, py::arg("check_limits") = true, py::kw_only(), py::arg("method") = "dynamic",
-           py::arg("damping_ratio") = compensation::CompensatorOptions{}.damping_ratio,
+           py::arg("damping_ratio") = py::none(),
            "robot: a Robot. model: a Model (default: the robot's own, as the CLI's run). gain: k (≥ 0).\n"
            "enabled=False gives the uncompensated command p_cmd = p. A model fitted for another geometry is refused.\n"
            "method: 'dynamic' (default, as `stiffpath run`: the damped tip's lag inverted, p_cmd = p + k·δ) or\n"
            "'quasi-static' (the thesis's p_cmd = p − k·C(p)·F). damping_ratio: ζ of the tip's modes the dynamic\n"
-           "method assumes (0 … 2, default 0.05).")
+           "method assumes (0 … 2; default None: the robot file's tip_damping_ratio, 0.05 when it gives none).")
       .def_property_readonly("model", [](const PyCompensator& c) { return c.model; })
       .def_property_readonly("robot", [](const PyCompensator& c) { return c.compensator->robot(); })
       .def("step",
@@ -176,7 +177,7 @@ void add_compensation(py::module_& m) {
            "One sample of the planned path (t in s; p, v, a, jerk, snap as (x, y) pairs in m, m/s, m/s², m/s³, m/s⁴) →\n"
            "JointCommand. Never raises for a bad sample: check .ok / .status, as a servo loop would.")
       .def_property_readonly("method", [](const PyCompensator& c) { return std::string(compensation::to_string(c.compensator->options().method)); })
-      .def_property_readonly("damping_ratio", [](const PyCompensator& c) { return c.compensator->options().damping_ratio; })
+      .def_property_readonly("damping_ratio", [](const PyCompensator& c) { return *c.compensator->options().damping_ratio; })
       .def("compensate", &compensate, py::arg("trajectory"), py::arg("acceleration") = "analytic",
            py::arg("rate_hz") = motion::default_sample_rate_hz, py::kw_only(),
            py::arg("smooth_s") = compensation::RunFilterOptions{}.smooth_s, py::arg("shaper") = "none",

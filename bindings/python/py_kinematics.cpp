@@ -124,6 +124,7 @@ void add_kinematics(py::module_& m) {
       .def_readonly("name", &Robot::name)
       .def_readonly("description", &Robot::description)
       .def_readonly("moving_mass_kg", &Robot::moving_mass_kg, "mass the platform carries (kg), thesis §4.2")
+      .def_readonly("tip_damping_ratio", &Robot::tip_damping_ratio, "damping ratio of the platform's modes (robot file; 0.05 when it gives none)")
       .def_readonly("cg_label", &Robot::cg_label, "name of the centre-of-gravity position ('G_U', 'G_L')")
       .def_readonly("cg_height_m", &Robot::cg_height_m, "height of the CG above the measured point G (m)")
       .def_property_readonly("joints", [](const Robot& r) { return std::vector<kinematics::JointLimit>(r.joints.begin(), r.joints.end()); },

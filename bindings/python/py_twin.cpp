@@ -48,7 +48,7 @@ compensation::JointCommand to_command(const JointRow& r) {
 PySimulation simulate(const kinematics::Robot& robot, const py::handle& joints_in,
                       const std::optional<PyModel>& truth, const std::string& truth_family, double perturbation,
                       std::uint64_t seed, const std::string& servo, bool cg_lever, int sides, double mass_scale,
-                      double damping_ratio, double motor_inertia_kg_m2, double load_feedforward,
+                      std::optional<double> damping_ratio, double motor_inertia_kg_m2, double load_feedforward,
                       const std::string& load_feedforward_from, double settle_s, double step_rate_hz,
                       double servo_bandwidth_hz, double mark_rate_hz) {
   if (servo != "loaded" && servo != "ideal") throw Error(fmt::format("simulate: servo must be 'loaded' or 'ideal', got '{}'", servo));
@@ -167,7 +167,7 @@ void add_twin(py::module_& m) {
         py::arg("truth_family") = "structural", py::arg("perturbation") = 0.10, py::arg("seed") = 1,
         py::arg("servo") = "loaded", py::arg("cg_lever") = true, py::arg("sides") = 0,
         py::arg("mass_scale") = simulation::SimulationOptions{}.mass_scale,
-        py::arg("damping_ratio") = simulation::PlantOptions{}.tip_damping_ratio,
+        py::arg("damping_ratio") = py::none(),
         py::arg("motor_inertia_kg_m2") = simulation::PlantOptions{}.motor_inertia_kg_m2,
         py::arg("load_feedforward") = simulation::PlantOptions{}.load_feedforward,
         py::arg("load_feedforward_from") = "reference",

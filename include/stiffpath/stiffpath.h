@@ -82,7 +82,8 @@ typedef struct stiffpath_options {
   int check_limits;     /**< check reach and joint limits on every step (default 1) */
   int outside_policy;   /**< a stiffpath_outside_policy (default STIFFPATH_OUTSIDE_MODEL_DEFAULT) */
   int method;           /**< a stiffpath_method (default STIFFPATH_METHOD_QUASI_STATIC; 0 keeps older callers' behaviour) */
-  double damping_ratio; /**< ζ of the tip's modes for STIFFPATH_METHOD_DYNAMIC, 0..2 (default 0.05) */
+  double damping_ratio; /**< ζ of the tip's modes for STIFFPATH_METHOD_DYNAMIC, 0..2; negative (the default, -1):
+                             the robot file's tip_damping_ratio, 0.05 when it gives none */
 } stiffpath_options;
 
 /** One sample of the planned end-point trajectory (SI, the robot's base frame). */

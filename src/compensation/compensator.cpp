@@ -86,8 +86,9 @@ Compensator::Compensator(const kinematics::Robot& robot, std::shared_ptr<const c
                          CompensatorOptions options)
     : spec_(robot), five_bar_(robot.five_bar()), model_(std::move(model)), options_(options) {
   if (!std::isfinite(options_.gain) || options_.gain < 0.0) throw Error("compensation gain must be finite and >= 0");
-  if (!(options_.damping_ratio >= 0.0 && options_.damping_ratio <= 2.0)) {
-    throw Error("compensation damping ratio must lie in 0..2, got " + std::to_string(options_.damping_ratio));
+  options_.damping_ratio = options.damping_ratio.value_or(robot.tip_damping_ratio);
+  if (!(*options_.damping_ratio >= 0.0 && *options_.damping_ratio <= 2.0)) {
+    throw Error("compensation damping ratio must lie in 0..2, got " + std::to_string(*options_.damping_ratio));
   }
   if (options_.method != Method::quasi_static && options_.method != Method::dynamic) {
     throw Error("unknown compensation method");
@@ -174,7 +175,7 @@ JointCommand Compensator::step_unchecked(const TaskSample& s) const noexcept {
       // δ = δ₀ − T·δ̇₀ + T²·δ̈₀ − T³·δ⃛₀ solves δ + T·δ̇ = δ₀ wherever d⁴δ₀/dt⁴ = 0 (constant crackle, as
       // in the smoothed plans). δ⃛₀ = m·(C·c + 3·Ċ·s + 3·C̈·j) (C⃛ dropped); the rates use T's own rates
       // Ṫ, T̈ from T at the neighbouring points and drop products of two of them and d⁴δ₀/dt⁴.
-      const double zeta = options_.damping_ratio;
+      const double zeta = *options_.damping_ratio;
       const Mat2 T = tip_time_constant(C, m, zeta);
       const Mat2 T_after = tip_time_constant(C_after, m, zeta), T_before = tip_time_constant(C_before, m, zeta);
       const Mat2 T_dot = (T_after - T_before) * (0.5 * inverse_h);

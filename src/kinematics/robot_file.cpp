@@ -60,7 +60,7 @@ Robot parse_robot(std::string_view text, const core::DataRef& file) {
   const core::JsonObject root(doc);
   root.allow_only({"name", "description", "left_actuator_mm", "right_actuator_mm", "left_proximal_mm",
                    "right_proximal_mm", "left_distal_mm", "right_distal_mm", "elbows", "assembly", "moving_mass_kg",
-                   "cg", "measurement", "joints", "singularity_margin", "home_mm", "compliance"},
+                   "tip_damping_ratio", "cg", "measurement", "joints", "singularity_margin", "home_mm", "compliance"},
                   kHints);
   Robot robot;
   robot.file = file;
@@ -69,6 +69,10 @@ Robot parse_robot(std::string_view text, const core::DataRef& file) {
   robot.description = root.has("description") ? root.string("description") : "";
   robot.geometry = parse_geometry(root);
   robot.moving_mass_kg = root.positive("moving_mass_kg");
+  if (root.has("tip_damping_ratio")) {
+    robot.tip_damping_ratio = root.non_negative("tip_damping_ratio");
+    if (!(robot.tip_damping_ratio < 1.0)) root.fail("tip_damping_ratio", fmt::format("must be below 1 (an underdamped mode), got {}", robot.tip_damping_ratio));
+  }
 
   if (root.has("cg")) {
     const core::JsonObject cg = root.object("cg");
@@ -156,6 +160,7 @@ nlohmann::json to_json(const Robot& r) {
   nlohmann::json doc = {{"name", r.name}, {"description", r.description}};
   doc.update(geometry_to_json(r.geometry));
   doc["moving_mass_kg"] = r.moving_mass_kg;
+  doc["tip_damping_ratio"] = r.tip_damping_ratio;
   doc["cg"] = {{"label", r.cg_label}, {"height_above_G_mm", units::m_to_mm(r.cg_height_m)}};
   if (r.replica) doc["measurement"] = {{"UG_mm", units::m_to_mm(r.replica->ug_m)}, {"UL_mm", units::m_to_mm(r.replica->ul_m)}};
   doc["joints"] = joints;

@@ -29,8 +29,9 @@ Plant::Plant(const kinematics::FiveBar& robot, std::shared_ptr<const compliance:
   if (!positive(options.motor_inertia_kg_m2)) {
     throw Error(fmt::format("plant: motor_inertia_kg_m2 {} must be positive", options.motor_inertia_kg_m2));
   }
-  if (!(options.tip_damping_ratio >= 0.0) || !std::isfinite(options.tip_damping_ratio)) {
-    throw Error(fmt::format("plant: tip damping ratio {} must be finite and ≥ 0", options.tip_damping_ratio));
+  options_.tip_damping_ratio = options.tip_damping_ratio.value_or(kDefaultTipDampingRatio);
+  if (!(*options_.tip_damping_ratio >= 0.0) || !std::isfinite(*options_.tip_damping_ratio)) {
+    throw Error(fmt::format("plant: tip damping ratio {} must be finite and ≥ 0", *options_.tip_damping_ratio));
   }
   if (!(options.load_feedforward >= 0.0 && options.load_feedforward <= 2.0)) {
     throw Error(fmt::format("plant: load_feedforward {} outside [0, 2]", options.load_feedforward));
@@ -66,7 +67,7 @@ Mat2 Plant::stiffness(const Vec2& p) const noexcept {
 
 Mat2 Plant::damping(const Vec2& p) const noexcept {
   const Mat2 k = stiffness(p);
-  return 2.0 * options_.tip_damping_ratio * std::sqrt(mass_) * sqrt_spd(lever_ ? Mat2(0.5 * (k + k.transpose())) : k);
+  return 2.0 * *options_.tip_damping_ratio * std::sqrt(mass_) * sqrt_spd(lever_ ? Mat2(0.5 * (k + k.transpose())) : k);
 }
 
 Vec2 Plant::static_joint_error(const Vec2& q_rad, const Vec2& force_N) const noexcept {
@@ -114,7 +115,7 @@ void Plant::update_cache(const Vec2& pb, const Mat2& jacobian) noexcept {
   cache_pb_ = pb;
   cache_J_ = jacobian;
   cache_K_ = stiffness(pb);
-  cache_D_ = 2.0 * options_.tip_damping_ratio * std::sqrt(mass_) *
+  cache_D_ = 2.0 * *options_.tip_damping_ratio * std::sqrt(mass_) *
              sqrt_spd(lever_ ? Mat2(0.5 * (cache_K_ + cache_K_.transpose())) : cache_K_);
   cache_q_ = state_.q_rad;
   cache_valid_ = true;

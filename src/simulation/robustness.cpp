@@ -15,9 +15,13 @@ struct Condition {
   double value = 0.0;
 };
 
-std::vector<Condition> conditions(const RobustnessOptions& o) {
+// The nominal tip damping ratio: the one set, else the robot file's.
+double nominal_damping_ratio(const RobustnessOptions& o, const kinematics::Robot& robot) {
+  return o.base.simulation.plant.tip_damping_ratio.value_or(robot.tip_damping_ratio);
+}
+
+std::vector<Condition> conditions(const RobustnessOptions& o, double zeta0) {
   std::vector<Condition> c{{"nominal", 0.0}};
-  const double zeta0 = o.base.simulation.plant.tip_damping_ratio;
   for (double z : o.damping_ratios) {
     if (z != zeta0) c.push_back({"damping_ratio", z});
   }
@@ -69,12 +73,14 @@ double median(std::vector<double> v) {
 }  // namespace
 
 int robustness_run_count(const RobustnessOptions& o) {
-  return static_cast<int>(conditions(o).size() * o.variants.size() * o.motions.size()) * o.seeds;
+  const double zeta0 = nominal_damping_ratio(o, kinematics::load_robot(o.robot));
+  return static_cast<int>(conditions(o, zeta0).size() * o.variants.size() * o.motions.size()) * o.seeds;
 }
 
 std::vector<RobustnessRow> run_robustness(const RobustnessOptions& options) {
   check(options);
   const kinematics::Robot robot = kinematics::load_robot(options.robot);
+  const double zeta0 = nominal_damping_ratio(options, robot);
   ExperimentOptions base = options.base;
   base.motions = {"x", "y", "triangle"};
   base.paths.clear();
@@ -85,7 +91,7 @@ std::vector<RobustnessRow> run_robustness(const RobustnessOptions& options) {
   base.truth.base = make_true_base(robot, base.truth);  // one structural fit, perturbed per seed
   std::vector<RobustnessRow> rows;
   std::map<std::string, std::vector<double>> atp;  // per row: AT_p of each seed
-  for (const auto& c : conditions(options)) {
+  for (const auto& c : conditions(options, zeta0)) {
     for (const auto& variant : options.variants) {
       for (const auto& motion : options.motions) rows.push_back({c.factor, c.value, variant, motion});
     }
@@ -99,7 +105,7 @@ std::vector<RobustnessRow> run_robustness(const RobustnessOptions& options) {
   for (int seed = 1; seed <= options.seeds; ++seed) {
     // The models depend on the seed and the campaign noise only.
     std::map<double, TwinModels> models;
-    for (const auto& c : conditions(options)) {
+    for (const auto& c : conditions(options, zeta0)) {
       ExperimentOptions o = base;
       o.truth.seed = static_cast<std::uint64_t>(seed);
       o.fit.seed = 1000 + static_cast<std::uint64_t>(seed);

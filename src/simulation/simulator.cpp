@@ -49,6 +49,7 @@ SimulationResult simulate(const JointSource& source, const kinematics::Robot& ro
   const kinematics::FiveBar robot = robot_spec.five_bar();
   PlantOptions plant_options = options.plant;
   if (plant_options.controller_mass_kg == 0.0) plant_options.controller_mass_kg = robot_spec.moving_mass_kg;
+  if (!plant_options.tip_damping_ratio) plant_options.tip_damping_ratio = robot_spec.tip_damping_ratio;
   Plant plant(robot, std::move(truth), robot_spec.moving_mass_kg * options.mass_scale, plant_options, options.cg_lever);
   SimulationResult out;
   auto first = source();

@@ -199,6 +199,50 @@ TEST(CliOwnRobot, SimulateAndExperimentUseTheRobotsTwin) {
   }
 }
 
+// The robot file's tip_damping_ratio is the ζ that run's dynamic compensation and the twin's plant assume:
+// a file with ζ = 0.15 gives what --damping-ratio 0.15 gives with a file without it, and the flag wins.
+TEST(CliOwnRobot, TheRobotFilesDampingRatioIsWhatRunAndTheTwinAssume) {
+  const Workspace w;
+  std::string text = kRobot.file("table.csv");
+  const std::string mass = "\"moving_mass_kg\": 2.2,";
+  ASSERT_NE(text.find(mass), std::string::npos);
+  write_text(w.dir / "damped.json", std::string(text).replace(text.find(mass), mass.size(), mass + " \"tip_damping_ratio\": 0.15,"));
+  write_text(w.dir / "bad.json", std::string(text).replace(text.find(mass), mass.size(), mass + "\n  \"tip_damping_ratio\": 1.5,"));
+  write_text(w.dir / "job.gcode", "G21 G90\nG0 X10 Y175\nM3 S100\nG1 Y245 F120000\nG1 X-30\nM5\n");
+  const auto run = [&](const std::string& robot, const std::string& extra, const std::string& out) {
+    const CliResult r = w.run("run job.gcode --robot " + robot + " --accel 5g --json -o " + out + " " + extra);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return r.json()["damping_ratio"].get<double>();
+  };
+  EXPECT_EQ(run("robot.json", "", "plain.csv"), 0.05);
+  EXPECT_EQ(run("damped.json", "", "damped.csv"), 0.15);
+  EXPECT_EQ(run("robot.json", "--damping-ratio 0.15", "flag.csv"), 0.15);
+  EXPECT_EQ(run("damped.json", "--damping-ratio 0.3", "both.csv"), 0.3);
+  const auto damped = read_csv(w.dir / "damped.csv"), flag = read_csv(w.dir / "flag.csv"), plain = read_csv(w.dir / "plain.csv");
+  ASSERT_GT(damped.size(), 100U);
+  EXPECT_EQ(damped, flag);
+  EXPECT_NE(damped, plain);  // the dynamic inversion's lag depends on ζ
+
+  // The twin's plant: the same commands ring down differently on a plant of the file's ζ.
+  ASSERT_EQ(w.run("run job.gcode --robot robot.json --accel 5g --format bin -o on.bin").exit_code, 0);
+  const auto residual = [&](const std::string& robot, const std::string& extra) {
+    const CliResult r = w.run("simulate on.bin --json --robot " + robot + " " + extra);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return r.json()["residual_vibration_mm"].get<double>();
+  };
+  const double file_zeta = residual("damped.json", ""), flag_zeta = residual("robot.json", "--damping-ratio 0.15");
+  EXPECT_EQ(file_zeta, flag_zeta);
+  EXPECT_NE(file_zeta, residual("robot.json", ""));
+
+  // 1.5 is not an underdamped mode: the file, its line and the value.
+  const CliResult bad = w.run("run job.gcode --robot bad.json -o bad.csv");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("bad.json:"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("tip_damping_ratio"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("1.5"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(w.dir / "bad.csv"));
+}
+
 TEST(CliOwnRobot, DataCheckAndTheExperimentOnAUsersOwnPath) {
   const Workspace w;
   // The robot is not its own mirror image: no symmetry is expected of its data; the exact field is linear.

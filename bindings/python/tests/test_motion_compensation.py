@@ -1,6 +1,7 @@
 # Planning and compensation from Python against `stiffpath run`'s joint file for the thesis's y motion, and against
 # the compensation identities of thesis fig. 4.3 (F = -m a, Δ = C(p) F, p_cmd = p - Δ, θ = IK(p_cmd)).
 import csv
+import json
 import threading
 
 import numpy as np
@@ -134,3 +135,16 @@ def test_long_calls_release_the_gil():
     for t in threads:
         t.join()
     assert len(set(results)) == 1 and results[0] > 0
+
+
+def test_the_robot_files_damping_ratio_is_the_compensators_default(tmp_path):
+    doc = stiffpath.Robot("oc-gu").to_dict()
+    assert doc["tip_damping_ratio"] == pytest.approx(0.05)
+    doc["tip_damping_ratio"] = 0.15
+    path = tmp_path / "damped.json"
+    path.write_text(json.dumps(doc))
+    damped = stiffpath.Robot(str(path))
+    assert damped.tip_damping_ratio == pytest.approx(0.15)
+    assert stiffpath.Compensator(damped).damping_ratio == pytest.approx(0.15)
+    assert stiffpath.Compensator(damped, damping_ratio=0.3).damping_ratio == pytest.approx(0.3)
+    assert stiffpath.Compensator(stiffpath.Robot("oc-gu")).damping_ratio == pytest.approx(0.05)

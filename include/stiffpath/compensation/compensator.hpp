@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "stiffpath/compensation/samples.hpp"
@@ -33,9 +34,10 @@ struct CompensatorOptions {
   bool enabled = true;        //!< false: p_cmd = p (the "without compensation" runs)
   bool check_limits = true;   //!< check reach and joint limits on every sample
   Method method = Method::quasi_static;  //!< the thesis's method unless asked (`stiffpath run` asks for dynamic)
-  //! ζ of the tip's modes assumed by Method::dynamic: bolted, bearing-jointed metal structures show
-  //! 1–5 %, the thesis's marks (fig. 4.12) die out within a few periods, so 0.05. Finite, 0…2.
-  double damping_ratio = 0.05;
+  //! ζ of the tip's modes assumed by Method::dynamic, finite, 0…2. Unset: the robot's tip_damping_ratio
+  //! (its robot file's, 0.05 when the file gives none: bolted, bearing-jointed metal structures show
+  //! 1–5 %, the thesis's marks, fig. 4.12, die out within a few periods). options() holds the value used.
+  std::optional<double> damping_ratio;
 };
 
 //! For each planned sample (fig. 4.3):

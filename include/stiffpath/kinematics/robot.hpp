@@ -49,6 +49,10 @@ struct Robot {
   SingularityMargin margin;
   std::array<JointLimit, 2> joints;  //!< θ1 (left actuator), θ2 (right)
   double moving_mass_kg = 0.0;       //!< everything the platform carries (thesis §4.2)
+  //! Damping ratio ζ of the platform's modes on its stiffness (a ring-down identifies it): the dynamic
+  //! compensation's and the input shaper's ζ, and the digital twin's, unless a caller sets its own.
+  //! 0.05 when the robot file gives none (a lightly damped welded or bolted frame).
+  double tip_damping_ratio = 0.05;
   std::string cg_label = "G";        //!< name of the CG position ("G_U", "G_L": fig. 4.5)
   double cg_height_m = 0.0;          //!< height of the CG above the measured point G
   std::optional<ReplicaLevers> replica;  //!< CMM replica, when the robot is measured that way

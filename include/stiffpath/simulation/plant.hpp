@@ -3,6 +3,7 @@
 
 #include <Eigen/LU>
 #include <memory>
+#include <optional>
 
 #include "stiffpath/compliance/model.hpp"
 #include "stiffpath/kinematics/five_bar.hpp"
@@ -13,6 +14,9 @@ using kinematics::Mat2;
 using kinematics::Vec2;
 
 //! Settings of the plant. Documented defaults (see docs/simulation.md for the reasoning).
+//! ζ of a plant built without a robot's own value.
+inline constexpr double kDefaultTipDampingRatio = 0.05;
+
 struct PlantOptions {
   //! Integration rate (Hz): 10× the 2 kHz command rate, and ~200 steps per period of the stiffest
   //! tip mode (~100 Hz), so the symplectic Euler step's frequency error is below 0.01 %.
@@ -42,9 +46,10 @@ struct PlantOptions {
   bool load_feedforward_from_command = false;
   //! The mass the controller believes (feed-forward and loop tuning), kg; 0 = the plant's mass.
   double controller_mass_kg = 0.0;
-  //! Damping ratio ζ of the tip's modes. Bolted, bearing-jointed metal structures show 1–5 %; the
-  //! thesis's marks (fig. 4.12) show vibration dying out within a few periods, so 5 %.
-  double tip_damping_ratio = 0.05;
+  //! Damping ratio ζ of the tip's modes. Unset: the robot's tip_damping_ratio when simulate() builds the
+  //! plant, else kDefaultTipDampingRatio (bolted, bearing-jointed metal structures show 1–5 %; the
+  //! thesis's marks, fig. 4.12, show vibration dying out within a few periods, so 5 %).
+  std::optional<double> tip_damping_ratio;
   //! Whether the joints feel the tip's spring and damper (τ_load = Jᵀ·F). Off: the servos track as if unloaded
   //! (the ideal servo of the error budget).
   bool servo_feels_load = true;
