@@ -14,6 +14,7 @@
 
 #include "stiffpath/compensation/compensator.hpp"
 #include "stiffpath/compliance/model_factory.hpp"
+#include "stiffpath/job/fixed_format.hpp"
 #include "stiffpath/job/job.hpp"
 #include "stiffpath/job/joint_writer.hpp"
 #include "stiffpath/motion/trajectory_stream.hpp"
@@ -146,7 +147,7 @@ BENCHMARK_CAPTURE(BM_WriteJoints, csv, job::OutputFormat::csv)->Unit(benchmark::
 BENCHMARK_CAPTURE(BM_WriteJoints, binary, job::OutputFormat::binary)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // The yardsticks of `run`'s output: the rows the marking job produces, written by the plainest writer
-// (std::to_chars into a buffer, fwrite; or a memcpy of each record), with no planning or compensation.
+// (the joint files' number formatter job::write_fixed into a buffer, fwrite; or a memcpy of each record), with no planning or compensation.
 // BM_RunJob / BM_PlainWriter is what the job's writer and pipeline cost on top of the bytes themselves.
 class Collect final : public job::JointWriter {
  public:
@@ -171,7 +172,7 @@ void BM_PlainWriter(benchmark::State& state, job::OutputFormat format) {
       char* p = buffer.data() + used;
       if (format == job::OutputFormat::csv) {
         const auto cell = [&p](double v, int d) {
-          p = std::to_chars(p, p + 64, v, std::chars_format::fixed, d).ptr;
+          p = job::write_fixed(p, v, d);
           *p++ = ',';
         };
         cell(c.t_s, 6);

@@ -7,11 +7,13 @@
 #include <bit>
 #include <cmath>
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
 #include <vector>
 
 #include "stiffpath/core/atomic_file.hpp"
 #include "stiffpath/core/error.hpp"
+#include "stiffpath/job/fixed_format.hpp"
 
 namespace stiffpath::job {
 
@@ -23,20 +25,6 @@ OutputFormat parse_output_format(const std::string& text) {
 
 namespace {
 constexpr std::size_t kFlushBytes = 1 << 20;
-
-// Longest cell: a sign, the 309 integer digits of the largest double, the point, 9 decimals.
-constexpr std::size_t kMaxCellChars = 1 + 309 + 1 + 9;
-
-// `value` correctly rounded to `decimals` places after the point, as printf("%.*f") would write it,
-// except that a negative value that rounds to zero is written without its sign ("0.000", not "-0.000").
-char* put_fixed(char* p, double value, int decimals) noexcept {
-  char* end = std::to_chars(p, p + kMaxCellChars, value, std::chars_format::fixed, decimals).ptr;
-  if (std::signbit(value) && value > -1.0 && std::all_of(p + 1, end, [](char c) { return c == '0' || c == '.'; })) {
-    std::memmove(p, p + 1, static_cast<std::size_t>(end - p - 1));
-    --end;
-  }
-  return end;
-}
 
 // Rows are formatted straight into a fixed buffer that goes to the file whenever it passes kFlushBytes.
 class CsvWriter final : public JointWriter {
@@ -50,26 +38,26 @@ class CsvWriter final : public JointWriter {
   }
   void write(const JointCommand& c) override {
     char* p = buffer_.data() + used_;
-    p = put_fixed(p, c.t_s, kCsvTimeDecimals);
+    p = write_fixed(p, c.t_s, kCsvTimeDecimals);
     for (double v : {c.q_rad.x(), c.q_rad.y(), c.qd_rad_s.x(), c.qd_rad_s.y()}) {
       *p++ = ',';
-      p = put_fixed(p, v, kCsvAngleDecimals);
+      p = write_fixed(p, v, kCsvAngleDecimals);
     }
     for (double v : {c.qdd_rad_s2.x(), c.qdd_rad_s2.y()}) {
       *p++ = ',';
-      p = put_fixed(p, v, kCsvAccelerationDecimals);
+      p = write_fixed(p, v, kCsvAccelerationDecimals);
     }
     *p++ = ',';
     *p++ = c.laser_on ? '1' : '0';
     *p++ = ',';
-    p = put_fixed(p, c.power, kCsvPowerDecimals);
+    p = write_fixed(p, c.power, kCsvPowerDecimals);
     for (double v : {c.target_m.x(), c.target_m.y(), c.command_m.x(), c.command_m.y()}) {
       *p++ = ',';
-      p = put_fixed(p, v * 1e3, kCsvMillimetreDecimals);
+      p = write_fixed(p, v * 1e3, kCsvMillimetreDecimals);
     }
     for (double v : {c.force_N.x(), c.force_N.y()}) {
       *p++ = ',';
-      p = put_fixed(p, v, kCsvForceDecimals);
+      p = write_fixed(p, v, kCsvForceDecimals);
     }
     *p++ = ',';
     p = std::to_chars(p, p + 12, c.line).ptr;
@@ -83,7 +71,7 @@ class CsvWriter final : public JointWriter {
   }
 
  private:
-  static constexpr std::size_t kMaxRowChars = 16 * (kMaxCellChars + 1) + 2;  // 16 cells, separators, newline
+  static constexpr std::size_t kMaxRowChars = 16 * (kMaxFixedChars + 1) + 2;  // 16 cells, separators, newline
   void flush() {
     file_.stream().write(buffer_.data(), static_cast<std::streamsize>(used_));
     used_ = 0;

@@ -60,7 +60,11 @@ TEST(JointFiles, CsvNumbersAreCorrectlyRounded) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::vector<double> values{0.0,      -0.0,      0.5,         -0.5,       2.5,      0.0005,    -0.0000000004,
                              0.125,    1.0000005, 0.1234565,   999.9999995, 1e15,    -123456789.0, 4.0000000005,
-                             -2.0e-10, 1.0 / 3.0, 0.000000001, 5e-7,       0.0000015};
+                             -2.0e-10, 1.0 / 3.0, 0.000000001, 5e-7,       0.0000015,
+                             // exact ties at 6 and 9 decimals (odd/2^7, odd/2^10): printf rounds them to even
+                             1.0 / 128, 3.0 / 128, -5.0 / 128, 1.0 / 1024, 3.0 / 1024, -7.0 / 1024,
+                             // the two paths' border and the smallest numbers
+                             999999999.9999999, -999999999.9999999, 1e9, 4.9e-324, -4.9e-324, 2.2250738585072014e-308};
   for (int i = 0; i < 20000; ++i) values.push_back(u(rng) * std::pow(10.0, (i % 9) - 3));
   std::vector<JointCommand> in;
   for (std::size_t k = 0; k < values.size(); ++k) {
