@@ -59,9 +59,10 @@ using Pose = std::array<ArmPose, 2>;
 Mat3 arm_stiffness(const ArmPose& g, const ArmCompliance& a) {
   // Actuator and proximal cantilever: a 3×3 compliance at B; the pin at B passes no moment, so B is held by
   // the inverse of its translational block.
-  Mat3 c = Mat3::Zero();
-  c(2, 2) = a.actuator_rad_per_Nm;
-  Mat3 prox = at_end(c, g.e, g.B - g.A);
+  // The actuator's torsion seen at B: κ·w·wᵀ, w = (−r_y, r_x, 1) the twist of a unit rotation about A (r = B − A).
+  const Vec2 r = g.B - g.A;
+  const Vec3 w(-r.y(), r.x(), 1.0);
+  Mat3 prox = a.actuator_rad_per_Nm * w * w.transpose();
   Mat3 beam = Mat3::Zero();
   const double lp = g.lp, bend = std::max(a.proximal_bending_per_Nm2, kRigid);
   beam(0, 0) = lp * std::max(a.proximal_axial_per_N, kRigid);
