@@ -271,15 +271,37 @@ Unpacked unpack(const Eigen::VectorXd& x) {
   return u;
 }
 
-// Bounds: compliances 1e-14 … 100 (SI), base 1e-14 … 1, offsets within ±kStructuralMaxOffset_m.
+// The arm elements' physical floors, SI (the fit's lower bounds): no actuator of such a robot is stiffer than
+// 10⁷ N·m/rad, no proximal link has EI above 10⁶ N·m² (a solid steel shaft of 10 cm), and no link, bearing or
+// parallelogram bar is stiffer than 10⁹ N/m (a steel bar of 10 cm² and 0.2 m). Below them an element is rigid
+// for every purpose of the tables (10⁻⁹ m/N is 0.2 µm at 200 N), and a "rigid" bar of 10⁻¹⁴ m/N against the
+// bodies' free rotation (kFreeRotation) leaves the condensation with a condition number of 10²⁴: a parallelogram
+// that nears flat then turns the field into a spike instead of a smooth rise.
+constexpr std::array<double, ArmCompliance::count> kFloor{1e-7, 1e-6, 1e-9, 1e-9, 1e-9, 1e-9};
+
+// Bounds: arm compliances kFloor … 100 (SI), base 1e-14 … 1, offsets within ±kStructuralMaxOffset_m.
 std::pair<Eigen::VectorXd, Eigen::VectorXd> bounds() {
   Eigen::VectorXd lo(kParams), hi(kParams);
   for (int k = 0; k < kParams; ++k) {
     const bool offset = k >= kOffset || (k < kBase && k % kPerArm >= ArmCompliance::count);
-    lo(k) = offset ? -kStructuralMaxOffset_m : std::log(1e-14);
+    const double floor = k < kBase && !offset ? kFloor[static_cast<std::size_t>(k % kPerArm)] : 1e-14;
+    lo(k) = offset ? -kStructuralMaxOffset_m : std::log(floor);
     hi(k) = offset ? kStructuralMaxOffset_m : (k >= kBase ? 0.0 : std::log(1e2));
   }
   return {lo, hi};
+}
+
+// A parallelogram must not flatten inside its workspace: at flat it is singular (it can fold into the crossed
+// branch) and the body it guides loses its orientation. Soft, so that the fit can still trade a little margin
+// for the table: at each point of a kGuardGrid² grid over the measured rectangle, each bar's offset that comes
+// within asin(kMinSine) (17.5°) of its link costs up to kGuardWeight (30) µm (the residuals' unit) per point. The
+// grid's spacing (a few mm, ≈ 2° of link rotation) is well inside that margin, so no flat pose slips between.
+constexpr int kGuardGrid = 15;
+constexpr double kMinSine = 0.3;
+constexpr double kGuardWeight = 30.0;
+
+double flatness(const Vec2& offset, const Vec2& link) {
+  return kGuardWeight * std::max(0.0, 1.0 - std::abs(cross(offset, link)) / std::max(offset.norm(), 1e-6) / kMinSine);
 }
 
 // A deterministic, platform-independent sequence in [0, 1) (SplitMix64).
@@ -352,7 +374,7 @@ Eigen::VectorXd minimise(Eigen::VectorXd x, const Cost& cost, const Eigen::Vecto
   return x;
 }
 
-constexpr int kStarts = 16;  // the thesis's OC finds its best basin at start 13, SC at start 1
+constexpr int kStarts = 16;  // the fit keeps the best of these fixed starts
 
 }  // namespace
 
@@ -388,12 +410,31 @@ std::shared_ptr<StructuralModel> fit_structural_model(const kinematics::Robot& r
     }
     poses.push_back(pose_at(five_bar, inverse.q, p));
   }
+  std::vector<Pose> guard;
+  for (int i = 0; i < kGuardGrid; ++i) {
+    for (int j = 0; j < kGuardGrid; ++j) {
+      const Vec2 p(region.x_min + (region.x_max - region.x_min) * i / (kGuardGrid - 1.0),
+                   region.y_min + (region.y_max - region.y_min) * j / (kGuardGrid - 1.0));
+      const auto inverse = five_bar.solve_inverse(p);
+      if (inverse.status == kinematics::Reach::ok) guard.push_back(pose_at(five_bar, inverse.q, p));
+    }
+  }
   const Vec2 a0 = midpoint(five_bar);
+  const auto table_cells = static_cast<Eigen::Index>(c.cells.size());
   auto cost = [&](const Eigen::VectorXd& x) {
     const Unpacked u = unpack(x);
-    return Eigen::VectorXd(1e6 * residuals(c, [&](std::size_t k) {
+    Eigen::VectorXd r(table_cells + static_cast<Eigen::Index>(4 * guard.size()));
+    r.head(table_cells) = 1e6 * residuals(c, [&](std::size_t k) {
       return network_compliance(poses[k], u.arms, u.base, u.offset, c.points[k], a0);
-    }));
+    });
+    Eigen::Index k = table_cells;
+    for (const Pose& g : guard) {
+      for (std::size_t i = 0; i < 2; ++i) {
+        r(k++) = flatness(u.arms[i].proximal_bar_offset_m, g[i].e);
+        r(k++) = flatness(u.arms[i].distal_bar_offset_m, g[i].u);
+      }
+    }
+    return r;
   };
   const auto [lo, hi] = bounds();
   Eigen::VectorXd best;

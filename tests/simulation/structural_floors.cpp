@@ -142,4 +142,23 @@ Floor rotation_invariant_floor(const measurement::DisplacementTable& table) {
   return f;
 }
 
+Floor model_misfit(const compliance::Model& model, const measurement::DisplacementTable& table) {
+  const std::vector<Obs> obs = observations(table);
+  int series = 0;
+  for (const Obs& o : obs) series = std::max(series, o.series + 1);
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(obs.size()), series);
+  Eigen::VectorXd b(static_cast<Eigen::Index>(obs.size()));
+  std::vector<const Obs*> rows;
+  for (std::size_t k = 0; k < obs.size(); ++k) {
+    const Obs& o = obs[k];
+    const auto i = static_cast<Eigen::Index>(k);
+    A(i, o.series) = 1.0;
+    b(i) = o.value - (model.compliance({o.x_m, o.y_m}) * Eigen::Vector2d(o.fx, o.fy))(o.axis);
+    rows.push_back(&o);
+  }
+  Floor f;
+  solve_into(A, b, rows, f);
+  return f;
+}
+
 }  // namespace stiffpath::simulation::testing

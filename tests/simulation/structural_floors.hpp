@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "stiffpath/compliance/model.hpp"
 #include "stiffpath/measurement/displacement_table.hpp"
 
 namespace stiffpath::simulation::testing {
@@ -36,5 +37,8 @@ Floor symmetric_floor(const measurement::DisplacementTable& table);
 //! share C_l. Linear least squares over B, one free C_l per radius and the series offsets (no definiteness
 //! imposed: a floor).
 Floor rotation_invariant_floor(const measurement::DisplacementTable& table);
+
+//! One given model's misfit C·F − d on every cell, each load series with its own offset (the fits' measure).
+Floor model_misfit(const compliance::Model& model, const measurement::DisplacementTable& table);
 
 }  // namespace stiffpath::simulation::testing

@@ -3,8 +3,11 @@
 
 #include <Eigen/LU>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <set>
+#include <string>
 
 #include "stiffpath/compliance/model_factory.hpp"
 #include "stiffpath/simulation/structural_compliance.hpp"
@@ -52,29 +55,68 @@ TEST(Structural, TheTablesAreReciprocalButNotRotationInvariant) {
   }
 }
 
-// Both builds: the structure reproduces the cells that a reciprocal model can (those within 23 µm of floor (a))
-// within the CMM's accuracy (RMS below its ±23 µm, at least 90 % of those cells within it), and its field is
-// symmetric positive definite.
+// The fitted structure reproduces the thesis's tables as well as the CMM can tell (±23 µm, thesis §2.3): OC on
+// every cell; SC on every cell a reciprocal linear model can reach (floor (a): all but x3y2 +x dy at 243 N and
+// x3y5 −y dy at 145 N, single readings out of line with their own series), bar at most 5 % of them (the ±23 µm
+// taken as the CMM's 2σ), with an RMS below its σ. Its field is symmetric positive definite, and smooth between
+// the table's points: C changes by less than 10 % per mm anywhere in the measured rectangle (a parallelogram
+// that flattens there makes a spike of 10³–10⁵ per mm).
 TEST(Structural, ReproducesTheThesisTablesWithinTheCmmTolerance) {
   for (const char* build : {"oc-gu", "sc-gu", "oc-gl", "sc-gl"}) {
     const auto robot = kinematics::load_robot(build);
     const auto table = compliance::robot_table(robot);
     StructuralFitReport rep;
     const auto model = fit_structural_model(robot, table, &rep);
-    const Floor symmetric = testing::symmetric_floor(table);
+    const Floor symmetric = testing::symmetric_floor(table), fit = testing::model_misfit(*model, table);
+    ASSERT_EQ(fit.cells.size(), symmetric.cells.size());
     std::printf("%s: %d cells, %d within 23 um, max %.1f um, rms %.1f um; symmetric floor: %d within\n", build,
                 rep.cells, rep.within_23um, rep.max_error_m * 1e6, rep.rms_error_m * 1e6, symmetric.within(kCmm_m));
-    EXPECT_LT(rep.rms_error_m, kCmm_m) << build;
-    EXPECT_GE(rep.within_23um, symmetric.within(kCmm_m) * 9 / 10) << build;
-    for (double x : {0.172132, 0.2, 0.222132, 0.25, 0.272132}) {
-      for (double y : {-0.075, -0.02, 0.0, 0.05, 0.075}) {
-        const compliance::Mat2 C = model->compliance({x, y});
+    EXPECT_EQ(fit.within(kCmm_m), rep.within_23um) << build;  // the report measures what the floors measure
+    const auto key = [](const testing::FloorCell& c) {
+      return c.point + c.direction + std::to_string(c.axis) + "@" + std::to_string(c.force_N);
+    };
+    std::set<std::string> unreachable;
+    for (const auto& c : symmetric.cells) {
+      if (std::abs(c.error_m) > kCmm_m) unreachable.insert(key(c));
+    }
+    int reachable = 0, missed = 0;
+    for (const auto& c : fit.cells) {
+      if (unreachable.count(key(c)) != 0) continue;
+      ++reachable;
+      if (std::abs(c.error_m) <= kCmm_m) continue;
+      ++missed;
+      std::printf("  misses %s %s d%c at %.0f N: %.1f um\n", c.point.c_str(), c.direction.c_str(), c.axis ? 'y' : 'x',
+                  c.force_N, c.error_m * 1e6);
+    }
+    const bool oc = build[0] == 'o';
+    EXPECT_EQ(reachable, static_cast<int>(fit.cells.size()) - (oc ? 0 : 2)) << build;
+    EXPECT_LE(missed, oc ? 0 : reachable / 20) << build;
+    EXPECT_LT(rep.rms_error_m, kCmmSigma_m) << build;
+    const auto b = model->bounds();
+    const double h = 0.5e-3;
+    double steepest = 0.0;
+    for (int i = 0; i <= 60; ++i) {
+      for (int j = 0; j <= 60; ++j) {
+        const compliance::Vec2 p(b.x_min + (b.x_max - b.x_min - h) * i / 60.0, b.y_min + (b.y_max - b.y_min - h) * j / 60.0);
+        const compliance::Mat2 C = model->compliance(p);
+        const double dx = (model->compliance(p + compliance::Vec2(h, 0)) - C).norm() / h;
+        const double dy = (model->compliance(p + compliance::Vec2(0, h)) - C).norm() / h;
+        steepest = std::max(steepest, std::max(dx, dy) / C.norm() * 1e-3);
         EXPECT_NEAR(C(0, 1), C(1, 0), 1e-12 * C.norm());
         EXPECT_GT(C.determinant(), 0.0);
         EXPECT_GT(C.trace(), 0.0);
       }
     }
+    std::printf("  steepest relative change of C: %.3f per mm\n", steepest);
+    EXPECT_LT(steepest, 0.1) << build;
   }
+}
+
+// The fit is deterministic: the same table gives the same parameters, to the last bit.
+TEST(Structural, FitIsDeterministic) {
+  const auto robot = kinematics::load_robot("sc-gu");
+  const auto table = compliance::robot_table(robot);
+  EXPECT_EQ(fit_structural_model(robot, table)->parameters().dump(), fit_structural_model(robot, table)->parameters().dump());
 }
 
 // The network reduces to the classical result: with rigid links, parallelogram bars that carry nothing (the distal

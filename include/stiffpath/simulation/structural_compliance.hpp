@@ -83,8 +83,10 @@ inline constexpr double kStructuralMaxOffset_m = 0.06;
 //! Fits the 12 arm compliances, 8 bar offsets, 3 base compliances and the measured point's offset to the
 //! translations dx, dy of `table` (the robot's rows; force along the load direction, F_N as measured), each
 //! load series with its own offset (eq. 4.8's intercept), by Levenberg–Marquardt (compliances on their
-//! logarithms, so they stay ≥ 0; offsets within ±kStructuralMaxOffset_m) from a fixed set of starts:
-//! deterministic. Throws stiffpath::Error when the table has too few translations.
+//! logarithms, between physical floors — no element stiffer than a steel part of the robot's size — and 100;
+//! offsets within ±kStructuralMaxOffset_m) from a fixed set of starts: deterministic. A soft penalty keeps each
+//! parallelogram at least 17.5° from flat over the measured rectangle (a flat parallelogram is singular), so the
+//! field stays smooth between the table's points. Throws stiffpath::Error when the table has too few translations.
 std::shared_ptr<StructuralModel> fit_structural_model(const kinematics::Robot& robot,
                                                       const measurement::DisplacementTable& table,
                                                       StructuralFitReport* report = nullptr);
