@@ -32,20 +32,21 @@ constexpr double kFreeRotation = 1e-9;  // N·m/rad on each body's ψ: keeps a b
 
 double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
-// G maps the wrench (Fx, Fy, M) at C to the wrench at P = C − r; Gᵀ maps P's small twist to C's.
-Mat3 wrench_shift(const Vec2& r) {
-  Mat3 g = Mat3::Identity();
-  g(2, 0) = -r.y();
-  g(2, 1) = r.x();
-  return g;
-}
-
-// An element's compliance (local frame along `axis`) seen at the chain's end: Gᵀ R C_e Rᵀ G.
-Mat3 at_end(const Mat3& local, const Vec2& axis, const Vec2& r) {
-  Mat3 rot = Mat3::Identity();
-  rot.topLeftCorner<2, 2>() << axis.x(), -axis.y(), axis.y(), axis.x();
-  const Mat3 g = wrench_shift(r);
-  return g.transpose() * rot * local * rot.transpose() * g;
+// The inverse of a symmetric positive definite 3×3 by its cofactors (the twin evaluates C_true every step;
+// a pivoting factorisation costs several times more). The physical floors keep the fitted networks' stiffnesses
+// within ~10 decades of each other, well inside double precision.
+Mat3 symmetric_inverse(const Mat3& m) {
+  const double a = m(0, 0), b = m(0, 1), c = m(0, 2), d = m(1, 1), e = m(1, 2), f = m(2, 2);
+  const double c00 = d * f - e * e, c01 = c * e - b * f, c02 = b * e - c * d;
+  const double inv_det = 1.0 / (a * c00 + b * c01 + c * c02);
+  Mat3 r;
+  r(0, 0) = c00 * inv_det;
+  r(0, 1) = r(1, 0) = c01 * inv_det;
+  r(0, 2) = r(2, 0) = c02 * inv_det;
+  r(1, 1) = (a * f - c * c) * inv_det;
+  r(1, 2) = r(2, 1) = (b * c - a * e) * inv_det;
+  r(2, 2) = (a * d - b * b) * inv_det;
+  return r;
 }
 
 // The arm's pose at one platform position: actuator A, elbow B, unit vectors e (A → B) and u (B → C).
@@ -55,58 +56,63 @@ struct ArmPose {
 };
 using Pose = std::array<ArmPose, 2>;
 
-// Platform stiffness (x, y, ψ at C) of one arm: its elbow body (B, ψ_E) condensed out.
-Mat3 arm_stiffness(const ArmPose& g, const ArmCompliance& a) {
-  // Actuator and proximal cantilever: a 3×3 compliance at B; the pin at B passes no moment, so B is held by
-  // the inverse of its translational block.
-  // The actuator's torsion seen at B: κ·w·wᵀ, w = (−r_y, r_x, 1) the twist of a unit rotation about A (r = B − A).
-  const Vec2 r = g.B - g.A;
-  const Vec3 w(-r.y(), r.x(), 1.0);
-  Mat3 prox = a.actuator_rad_per_Nm * w * w.transpose();
-  Mat3 beam = Mat3::Zero();
-  const double lp = g.lp, bend = std::max(a.proximal_bending_per_Nm2, kRigid);
-  beam(0, 0) = lp * std::max(a.proximal_axial_per_N, kRigid);
-  beam(1, 1) = lp * lp * lp / 3.0 * bend;
-  beam(1, 2) = beam(2, 1) = lp * lp / 2.0 * bend;
-  beam(2, 2) = lp * bend;
-  prox += at_end(beam, g.e, Vec2::Zero());
-  Mat3 kaa = Mat3::Zero(), kap = Mat3::Zero(), kpp = Mat3::Zero();  // elbow body a = (B, ψ_E), platform p
-  kaa.topLeftCorner<2, 2>() = prox.topLeftCorner<2, 2>().inverse();
-  kaa(2, 2) += kFreeRotation;
-  kpp(2, 2) += kFreeRotation;
-  // Proximal parallelogram bar: base pivot A + d → body pivot B + d, along e.
-  const Vec3 gp(g.e.x(), g.e.y(), cross(a.proximal_bar_offset_m, g.e));
-  kaa += gp * gp.transpose() / std::max(a.proximal_bar_m_per_N, kRigid);
-  // A bar from the elbow body (offset d from B) to the platform (offset d from C), along u: stretch u·(δC + ψ_P k×d
-  // − δB − ψ_E k×d).
-  const auto bar = [&](const Vec2& d, double compliance) {
-    const double s = cross(d, g.u), k = 1.0 / std::max(compliance, kRigid);
-    const Vec3 ha(-g.u.x(), -g.u.y(), -s), hp(g.u.x(), g.u.y(), s);
-    kaa += k * ha * ha.transpose();
-    kap += k * ha * hp.transpose();
-    kpp += k * hp * hp.transpose();
-  };
-  bar(Vec2::Zero(), g.ld * a.distal_axial_per_N);  // the distal link, through B and C
-  bar(a.distal_bar_offset_m, a.distal_bar_m_per_N);
-  return kpp - kap.transpose() * kaa.ldlt().solve(kap);
+// The pin at B passes no moment, so the actuator and the proximal cantilever hold B by the inverse of their
+// translational compliance at B: κ·(l_p n)(l_p n)ᵀ (a unit rotation about A moves B by l_p·n) + l_p/EA·e·eᵀ +
+// l_p³/3EI·n·nᵀ, diagonal in (e, n).
+detail::ArmSprings arm_springs(const ArmCompliance& a, double lp, double ld) {
+  detail::ArmSprings s;
+  s.along_e = 1.0 / (lp * std::max(a.proximal_axial_per_N, kRigid));
+  s.across_e = 1.0 / (a.actuator_rad_per_Nm * lp * lp + lp * lp * lp / 3.0 * std::max(a.proximal_bending_per_Nm2, kRigid));
+  s.proximal_bar = 1.0 / std::max(a.proximal_bar_m_per_N, kRigid);
+  s.distal_link = 1.0 / std::max(ld * a.distal_axial_per_N, kRigid);
+  s.distal_bar = 1.0 / std::max(a.distal_bar_m_per_N, kRigid);
+  s.proximal_offset = a.proximal_bar_offset_m;
+  s.distal_offset = a.distal_bar_offset_m;
+  return s;
 }
 
-Mat2 network_compliance(const Pose& pose, const std::array<ArmCompliance, 2>& arms, const BaseCompliance& base,
+std::array<detail::ArmSprings, 2> arm_springs(const std::array<ArmCompliance, 2>& arms, const kinematics::FiveBarGeometry& g) {
+  return {arm_springs(arms[0], g.proximal_m[0], g.distal_m[0]), arm_springs(arms[1], g.proximal_m[1], g.distal_m[1])};
+}
+
+// Platform stiffness (x, y, ψ at C) of one arm: its elbow body (B, ψ_E) condensed out.
+Mat3 arm_stiffness(const ArmPose& g, const detail::ArmSprings& a) {
+  const Vec2 n(-g.e.y(), g.e.x());
+  Mat3 kaa = Mat3::Zero();  // elbow body (B, ψ_E)
+  kaa.topLeftCorner<2, 2>() = a.along_e * g.e * g.e.transpose() + a.across_e * n * n.transpose();
+  kaa(2, 2) = kFreeRotation;
+  // Proximal parallelogram bar: base pivot A + d → body pivot B + d, along e.
+  const Vec3 gp(g.e.x(), g.e.y(), cross(a.proximal_offset, g.e));
+  kaa.noalias() += a.proximal_bar * gp * gp.transpose();
+  // Both the distal link and the distal bar join the elbow body to the platform along u, with h = (u, d × u) on
+  // the platform's side and −h on the body's: each adds k·h·hᵀ to the platform's block and to the body's, and
+  // −k·h·hᵀ to the coupling, so one symmetric B = Σ k·h·hᵀ carries all three.
+  const Vec3 hl(g.u.x(), g.u.y(), 0.0), hb(g.u.x(), g.u.y(), cross(a.distal_offset, g.u));
+  Mat3 bars = a.distal_link * hl * hl.transpose();
+  bars.noalias() += a.distal_bar * hb * hb.transpose();
+  kaa += bars;
+  Mat3 kpp = bars;
+  kpp(2, 2) += kFreeRotation;
+  return kpp - bars * symmetric_inverse(kaa) * bars;
+}
+
+Mat2 network_compliance(const Pose& pose, const std::array<detail::ArmSprings, 2>& arms, const BaseCompliance& base,
                         const Vec2& offset, const Vec2& p, const Vec2& a0) {
   const Mat3 k = arm_stiffness(pose[0], arms[0]) + arm_stiffness(pose[1], arms[1]);
-  // Force at G = C + offset: the wrench at C is G_rᵀ… with M = offset × F; G moves by δC + ψ k × offset.
-  Mat3 g = Mat3::Identity();
-  g(2, 0) = -offset.y();
-  g(2, 1) = offset.x();
-  const Mat3 cp = k.ldlt().solve(g);
-  Mat2 c = (g.transpose() * cp).topLeftCorner<2, 2>();
-  c = 0.5 * (c + c.transpose());
-  // The base frame under both arms, in series with them: translation and rotation about the actuators' midpoint.
-  Mat3 b = Mat3::Zero();
-  b(0, 0) = base.x_m_per_N;
-  b(1, 1) = base.y_m_per_N;
-  b(2, 2) = base.rotation_rad_per_Nm;
-  return c + at_end(b, Vec2(1, 0), p - a0).topLeftCorner<2, 2>();
+  // Force at G = C + offset: the wrench at C is (F, offset × F); G moves by δC + ψ·k × offset. So
+  // C_G = Gᵀ·K⁻¹·G with G's columns (1, 0, −offset_y) and (0, 1, offset_x).
+  const Mat3 kc = symmetric_inverse(k);
+  const Vec3 gx(1.0, 0.0, -offset.y()), gy(0.0, 1.0, offset.x());
+  const Vec3 kx = kc * gx, ky = kc * gy;
+  const double cxy = 0.5 * (gx.dot(ky) + gy.dot(kx));
+  Mat2 c;
+  c << gx.dot(kx), cxy, cxy, gy.dot(ky);
+  // The base frame under both arms, in series with them: translation, and rotation about the actuators'
+  // midpoint A_0, which moves p by ψ·k × (p − A_0).
+  const Vec2 w(a0.y() - p.y(), p.x() - a0.x());
+  c(0, 0) += base.x_m_per_N;
+  c(1, 1) += base.y_m_per_N;
+  return c + base.rotation_rad_per_Nm * w * w.transpose();
 }
 
 // The arms' poses at p (p within reach).
@@ -146,6 +152,7 @@ StructuralModel::StructuralModel(const kinematics::Robot& robot, std::array<ArmC
     }
   }
   if (!offset_.allFinite()) throw Error("structural model: the measured point's offset must be finite");
+  springs_ = arm_springs(arms_, five_bar_.geometry());
   set_outside_policy(compliance::OutsidePolicy::extrapolate);
 }
 
@@ -157,7 +164,7 @@ Mat2 StructuralModel::compliance(const Vec2& p_in) const noexcept {
     p = region_.clamp(p_in);
     inverse = five_bar_.solve_inverse(p);
   }
-  return network_compliance(pose_at(five_bar_, inverse.q, p), arms_, base_, offset_, p, midpoint(five_bar_));
+  return network_compliance(pose_at(five_bar_, inverse.q, p), springs_, base_, offset_, p, midpoint(five_bar_));
 }
 
 nlohmann::json StructuralModel::parameters() const {
@@ -421,11 +428,13 @@ std::shared_ptr<StructuralModel> fit_structural_model(const kinematics::Robot& r
   }
   const Vec2 a0 = midpoint(five_bar);
   const auto table_cells = static_cast<Eigen::Index>(c.cells.size());
+  const auto& geometry = five_bar.geometry();
   auto cost = [&](const Eigen::VectorXd& x) {
     const Unpacked u = unpack(x);
+    const auto springs = arm_springs(u.arms, geometry);
     Eigen::VectorXd r(table_cells + static_cast<Eigen::Index>(4 * guard.size()));
     r.head(table_cells) = 1e6 * residuals(c, [&](std::size_t k) {
-      return network_compliance(poses[k], u.arms, u.base, u.offset, c.points[k], a0);
+      return network_compliance(poses[k], springs, u.base, u.offset, c.points[k], a0);
     });
     Eigen::Index k = table_cells;
     for (const Pose& g : guard) {

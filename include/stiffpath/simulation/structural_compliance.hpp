@@ -31,6 +31,17 @@ struct ArmCompliance {
   [[nodiscard]] double operator[](int k) const noexcept;
 };
 
+namespace detail {
+//! One arm's elements as stiffnesses (SI), constant over the workspace (the links' lengths do not change):
+//! the elbow B held along the proximal link (its stretch) and across it (actuator torsion and bending in
+//! series), the bars' and the distal link's axial stiffnesses, and the bars' offsets.
+struct ArmSprings {
+  double along_e = 0.0, across_e = 0.0;
+  double proximal_bar = 0.0, distal_link = 0.0, distal_bar = 0.0;
+  compliance::Vec2 proximal_offset = compliance::Vec2::Zero(), distal_offset = compliance::Vec2::Zero();
+};
+}  // namespace detail
+
 //! The frame that carries both actuators (SI compliances ≥ 0), loaded by the force at C and its moment
 //! about the actuators' midpoint A_0.
 struct BaseCompliance {
@@ -63,6 +74,7 @@ class StructuralModel final : public compliance::Model {
  private:
   kinematics::FiveBar five_bar_;
   std::array<ArmCompliance, 2> arms_;
+  std::array<detail::ArmSprings, 2> springs_;  //!< arms_ as stiffnesses, once
   BaseCompliance base_;
   compliance::GridBounds region_;
   compliance::Vec2 offset_;
