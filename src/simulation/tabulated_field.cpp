@@ -30,6 +30,12 @@ void catmull_rom(double t, double w[4]) noexcept {
   w[3] = 0.5 * (t3 - t2);
 }
 
+// The cell [i, i+1] with 1 ≤ i ≤ n − 3 that holds the lattice coordinate w (the region starts at node 1,
+// up to rounding); its 4-node stencil is i − 1 … i + 2.
+std::size_t cell_of(double w, std::size_t n) noexcept {
+  return std::clamp(static_cast<std::size_t>(std::max(w, 1.0)), std::size_t{1}, n - 3);
+}
+
 }  // namespace
 
 TabulatedModel::TabulatedModel(std::shared_ptr<const compliance::Model> base, const GridBounds& region,
@@ -86,15 +92,16 @@ Mat2 TabulatedModel::interpolate(std::size_t i, std::size_t j, double tx, double
   return out;
 }
 
+bool TabulatedModel::reads_lattice(const Vec2& p) const noexcept {
+  if (!region_.contains(p)) return false;
+  const std::size_t i = cell_of((p.x() - x0_) / h_, nx_), j = cell_of((p.y() - y0_) / h_, ny_);
+  return exact_[(i - 1) * (ny_ - 3) + (j - 1)] == 0;
+}
+
 Mat2 TabulatedModel::compliance(const Vec2& p) const noexcept {
   if (!region_.contains(p)) return base_->compliance(p);
   const double u = (p.x() - x0_) / h_, v = (p.y() - y0_) / h_;
-  // The cell [i, i+1] × [j, j+1] with 1 ≤ i ≤ nx − 3 (the region starts at node 1, up to rounding) and
-  // its 4 × 4 stencil.
-  const auto cell = [](double w, std::size_t n) {
-    return std::clamp(static_cast<std::size_t>(std::max(w, 1.0)), std::size_t{1}, n - 3);
-  };
-  const std::size_t i = cell(u, nx_), j = cell(v, ny_);
+  const std::size_t i = cell_of(u, nx_), j = cell_of(v, ny_);
   if (exact_[(i - 1) * (ny_ - 3) + (j - 1)]) return base_->compliance(p);
   return interpolate(i, j, u - static_cast<double>(i), v - static_cast<double>(j));
 }
@@ -116,7 +123,7 @@ nlohmann::json TabulatedModel::parameters() const {
 std::shared_ptr<const compliance::Model> tabulate_true_field(std::shared_ptr<const compliance::Model> base) {
   const GridBounds b = base->bounds();
   const double margin = std::max(0.05, 0.25 * std::max(b.x_max - b.x_min, b.y_max - b.y_min));
-  return std::make_shared<TabulatedModel>(std::move(base), b.grown(margin), 1e-3);
+  return std::make_shared<TabulatedModel>(std::move(base), b.grown(margin), 0.5e-3);
 }
 
 }  // namespace stiffpath::simulation

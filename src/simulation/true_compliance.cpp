@@ -77,7 +77,7 @@ std::shared_ptr<const compliance::Model> make_true_base(const kinematics::Robot&
   } else if (!robot.compliance.table.empty()) {
     if (options.family == "structural") {
       // The structure costs an inverse kinematics and a network of arms per point; the plant reads it
-      // every 20 kHz step, from a 1 mm lattice (within 10⁻⁵ of the structure, tabulated_field.hpp).
+      // every 20 kHz step, from a 0.5 mm lattice (within 10⁻⁵ of the structure, tabulated_field.hpp).
       return tabulate_true_field(fit_structural_model(robot, compliance::robot_table(robot)));
     }
     if (options.family != "physical") {

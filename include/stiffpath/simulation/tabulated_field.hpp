@@ -32,6 +32,8 @@ class TabulatedModel final : public compliance::Model {
   [[nodiscard]] std::size_t nodes() const noexcept { return values_.size(); }
   //! Cells left to the base (not smooth enough on the lattice's scale).
   [[nodiscard]] std::size_t exact_cells() const noexcept;
+  //! Whether compliance(p) reads the lattice (false: it asks the base).
+  [[nodiscard]] bool reads_lattice(const compliance::Vec2& p) const noexcept;
 
  private:
   std::shared_ptr<const compliance::Model> base_;
@@ -44,7 +46,7 @@ class TabulatedModel final : public compliance::Model {
   [[nodiscard]] compliance::Mat2 interpolate(std::size_t i, std::size_t j, double tx, double ty) const noexcept;
 };
 
-//! C_true's default lattice: 1 mm over the measured rectangle grown by max(50 mm, its larger side / 4).
+//! C_true's default lattice: 0.5 mm over the measured rectangle grown by max(50 mm, its larger side / 4).
 std::shared_ptr<const compliance::Model> tabulate_true_field(std::shared_ptr<const compliance::Model> base);
 
 }  // namespace stiffpath::simulation
