@@ -3,6 +3,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <vector>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -343,15 +344,23 @@ Eigen::VectorXd start(int k) {
   return x;
 }
 
-// Projected Levenberg–Marquardt from x.
-template <class Cost>
-Eigen::VectorXd minimise(Eigen::VectorXd x, const Cost& cost, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
-                         int iterations) {
-  x = x.cwiseMax(lo).cwiseMin(hi);
+// Projected Levenberg–Marquardt: where it stands (x, its damping λ) and whether it has stopped, so that a
+// run can be continued exactly where it left off.
+struct Descent {
+  Eigen::VectorXd x;
   double lambda = 1e-2;
+  bool stopped = false;
+};
+
+// Continues `d` by up to `iterations` steps.
+template <class Cost>
+void descend(Descent& d, const Cost& cost, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi, int iterations) {
+  Eigen::VectorXd& x = d.x;
+  double& lambda = d.lambda;
+  x = x.cwiseMax(lo).cwiseMin(hi);
   Eigen::VectorXd r = cost(x);
   Eigen::MatrixXd J(r.size(), kParams);
-  for (int it = 0; it < iterations; ++it) {
+  for (int it = 0; it < iterations && !d.stopped; ++it) {
     for (int k = 0; k < kParams; ++k) {
       Eigen::VectorXd xp = x;
       const double h = k >= kOffset || (k < kBase && k % kPerArm >= ArmCompliance::count) ? 1e-6 : 1e-5;
@@ -376,12 +385,14 @@ Eigen::VectorXd minimise(Eigen::VectorXd x, const Cost& cost, const Eigen::Vecto
         lambda *= 4.0;
       }
     }
-    if (!improved) break;
+    if (!improved) d.stopped = true;
   }
-  return x;
 }
 
-constexpr int kStarts = 16;  // the fit keeps the best of these fixed starts
+constexpr int kStarts = 16;     // the fit keeps the best of these fixed starts …
+constexpr int kScreenSteps = 40;  // … after screening all of them for this many steps
+constexpr int kFinalists = 4;     // and carrying the best few on
+constexpr int kSteps = 300;       // to this many steps in all
 
 }  // namespace
 
@@ -446,17 +457,22 @@ std::shared_ptr<StructuralModel> fit_structural_model(const kinematics::Robot& r
     return r;
   };
   const auto [lo, hi] = bounds();
-  Eigen::VectorXd best;
-  double best_cost = 1e300;
+  // Every start descends a little; the most promising go on (each exactly as an uninterrupted run would:
+  // a start stopped by then is already final). Ties keep the lower start.
+  std::vector<std::pair<double, Descent>> runs;
   for (int k = 0; k < kStarts; ++k) {
-    const Eigen::VectorXd x = minimise(start(k), cost, lo, hi, 300);
-    const double v = cost(x).squaredNorm();
-    if (v < best_cost) {
-      best_cost = v;
-      best = x;
-    }
+    Descent d{start(k)};
+    descend(d, cost, lo, hi, kScreenSteps);
+    runs.emplace_back(cost(d.x).squaredNorm(), std::move(d));
   }
-  const Unpacked u = unpack(best);
+  std::stable_sort(runs.begin(), runs.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  runs.resize(kFinalists);
+  for (auto& [value, d] : runs) {
+    descend(d, cost, lo, hi, kSteps - kScreenSteps);
+    value = cost(d.x).squaredNorm();
+  }
+  const auto best = std::min_element(runs.begin(), runs.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  const Unpacked u = unpack(best->second.x);
   auto model = std::make_shared<StructuralModel>(robot, u.arms, region, u.base, u.offset);
   if (report) *report = structural_fit_report(*model, table);
   return model;
