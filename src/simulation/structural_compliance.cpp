@@ -457,8 +457,9 @@ std::shared_ptr<StructuralModel> fit_structural_model(const kinematics::Robot& r
     return r;
   };
   const auto [lo, hi] = bounds();
-  // Every start descends a little; the most promising go on (each exactly as an uninterrupted run would:
-  // a start stopped by then is already final). Ties keep the lower start.
+  // Every start descends a little; the most promising go on, each exactly as an uninterrupted run would (a
+  // start stopped by then is already final). For both thesis robots the winner of all 16 run to the end
+  // (start 13, by far) is among the best 4 after 40 steps. Ties keep the lower start.
   std::vector<std::pair<double, Descent>> runs;
   for (int k = 0; k < kStarts; ++k) {
     Descent d{start(k)};
