@@ -83,14 +83,14 @@ void run(const CvOptions& o) {
   }
   fmt::print("leave-one-out cross-validation, robot {}, {}{}: error = mean |dx|,|dy| error at the highest load (um)\n",
              robot.name, table.source, rows_name.empty() ? "" : " rows " + rows_name);
-  fmt::print("{:<12} {:>9} {:>14} {:>10} {:>8} {:>14}\n", "method", "interior", "all predicted", "max", "points",
+  fmt::print("{:<16} {:>9} {:>14} {:>10} {:>8} {:>14}\n", "method", "interior", "all predicted", "max", "points",
              "common points");
   for (std::size_t k = 0; k < report.methods.size(); ++k) {
     const auto& m = report.methods[k];
-    fmt::print("{:<12} {:>9.1f} {:>14.1f} {:>10.1f} {:>8} {:>14.1f}\n", m.method, m.interior_mean_um, m.mean_um,
+    fmt::print("{:<16} {:>9.1f} {:>14.1f} {:>10.1f} {:>8} {:>14.1f}\n", m.method, m.interior_mean_um, m.mean_um,
                m.max_um, m.predicted, scores[k].second);
   }
-  for (const auto& s : report.skipped) fmt::print("{:<12} could not run: {}\n", s.method, s.reason);
+  for (const auto& s : report.skipped) fmt::print("{:<16} could not run: {}\n", s.method, s.reason);
   const auto& named = robot.compliance;
   const std::string note = !named.model.empty()    ? fmt::format("; robot {} names its model file {}", robot.name, named.model.label())
                            : !named.method.empty() ? fmt::format("; robot {} names the method {} in its file", robot.name, named.method)

@@ -78,7 +78,7 @@ void add_fit_command(CLI::App& app) {
   add_robot_flag(cmd, o->robot);
   auto* rows = cmd->add_option("--rows", o->rows, "Rows of the table's mechanism column to use (default: the robot's)");
   cmd->add_option("--method", o->method,
-                  "auto (the method cross-validation favours), bilinear (thesis), symmetric, physical, physical-0, physical-2")
+                  "auto (the method cross-validation favours), bilinear (thesis), symmetric, physical, physical-0, physical-2, physical-spline")
       ->capture_default_str();
   cmd->add_option("--forces", o->forces, "measured (kgf relative to step 0) or nominal (50-250 N)")->capture_default_str();
   cmd->add_option("--outside", o->outside,

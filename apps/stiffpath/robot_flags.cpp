@@ -18,7 +18,7 @@ void add_model_flags(CLI::App* cmd, compliance::ModelRequest& request) {
   cmd->add_option("--model", request.model,
                   "Compliance model file or built-in (thesis-oc, thesis-sc[-<method>]); default: the robot's own");
   cmd->add_option("--method", request.method,
-                  "Fit the robot's table with this method (bilinear, symmetric, physical, physical-0, physical-2, auto)");
+                  "Fit the robot's table with this method (bilinear, symmetric, physical, physical-0, physical-2, physical-spline, auto)");
   cmd->add_flag("--force-model", request.force, "Use a model even if it was fitted for another robot geometry");
 }
 

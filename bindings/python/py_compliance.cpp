@@ -179,7 +179,7 @@ void add_compliance(py::module_& m) {
                       "A compliance model of the platform point: Δ = C(p)·F (thesis eqs. 4.6–4.7; the bilinear grid\n"
                       "model is eq. 4.12). Shared with the compensators built from it.")
       .def_property_readonly("method", [](const PyModel& p) { return p.model->method(); },
-                             "'bilinear', 'symmetric', 'physical', 'physical-0' or 'physical-2'")
+                             "'bilinear', 'symmetric', 'physical', 'physical-0', 'physical-2' or 'physical-spline'")
       .def_readonly("label", &PyModel::label, "'thesis-oc', a file's path, or 'physical fitted to <table>'")
       .def_property_readonly("robot", [](const PyModel& p) { return p.provenance.robot; },
                              "name of the robot it was fitted for")

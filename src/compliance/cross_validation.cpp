@@ -11,6 +11,7 @@
 #include "stiffpath/compliance/grid.hpp"
 #include "stiffpath/compliance/grid_model.hpp"
 #include "stiffpath/compliance/physical_model.hpp"
+#include "stiffpath/compliance/physical_spline_model.hpp"
 
 namespace stiffpath::compliance {
 
@@ -180,6 +181,21 @@ CvReport cross_validate(const std::vector<PointSamples>& points, const kinematic
     } catch (const Error& e) {
       report.skipped.push_back({name, e.message()});
     }
+  }
+  try {
+    report.methods.push_back(evaluate(
+        "physical-spline", "physical (order 1) + thin-plate smoothing spline of its residual at the points", points,
+        interior, zero_force, [&](std::size_t k) {
+          std::vector<PointSamples> rest;
+          for (std::size_t m = 0; m < points.size(); ++m) {
+            if (m != k) rest.push_back(points[m]);
+          }
+          const auto model = fit_physical_spline_model(rest, geometry, source, false);
+          model->set_outside_policy(OutsidePolicy::extrapolate);
+          return std::optional<Prediction>(Prediction{model->compliance(points[k].position), Vec2::Zero()});
+        }));
+  } catch (const Error& e) {
+    report.skipped.push_back({"physical-spline", e.message()});
   }
   return report;
 }

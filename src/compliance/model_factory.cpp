@@ -7,11 +7,12 @@
 #include "stiffpath/compliance/grid_model.hpp"
 #include "stiffpath/compliance/model_file.hpp"
 #include "stiffpath/compliance/physical_model.hpp"
+#include "stiffpath/compliance/physical_spline_model.hpp"
 #include "stiffpath/core/error.hpp"
 
 namespace stiffpath::compliance {
 
-std::vector<std::string> method_names() { return {"bilinear", "symmetric", "physical", "physical-0", "physical-2"}; }
+std::vector<std::string> method_names() { return {"bilinear", "symmetric", "physical", "physical-0", "physical-2", "physical-spline"}; }
 
 namespace {
 std::string join(const std::vector<std::string>& items) {
@@ -53,6 +54,8 @@ LoadedModel fit_model(const measurement::DisplacementTable& table, const std::st
   } else if (chosen == "physical" || chosen == "physical-0" || chosen == "physical-2") {
     const int order = chosen == "physical" ? 1 : chosen.back() - '0';
     out.model = fit_physical_model(points, robot.geometry, order, table.source);
+  } else if (chosen == "physical-spline") {
+    out.model = fit_physical_spline_model(points, robot.geometry, table.source);
   } else {
     throw Error(fmt::format("unknown compliance method '{}' (known: {}, auto)", method, join(method_names())));
   }

@@ -7,6 +7,7 @@
 
 #include "stiffpath/compliance/grid_model.hpp"
 #include "stiffpath/compliance/physical_model.hpp"
+#include "stiffpath/compliance/physical_spline_model.hpp"
 #include "stiffpath/core/atomic_file.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/core/json_fields.hpp"
@@ -111,7 +112,7 @@ std::unique_ptr<Model> grid_model_from(const core::JsonObject& root, const std::
   return std::make_unique<GridModel>(method, std::move(grid), std::move(nodes));
 }
 
-std::unique_ptr<Model> physical_model_from(const core::JsonObject& root,
+std::unique_ptr<PhysicalModel> physical_model_from(const core::JsonObject& root,
                                            const std::optional<kinematics::FiveBarGeometry>& recorded) {
   // Version 1 files give the thesis robot's link length; version 2 files their robot's geometry.
   kinematics::FiveBarGeometry geometry;
@@ -145,6 +146,46 @@ std::unique_ptr<Model> physical_model_from(const core::JsonObject& root,
   return std::make_unique<PhysicalModel>(geometry, GridBounds{b[0] * 1e-3, b[1] * 1e-3, b[2] * 1e-3, b[3] * 1e-3}, order,
                                          std::move(coefficients),
                                          root.has("stats") ? root.raw()["stats"] : nlohmann::json::object());
+}
+
+// `key` of `obj`: an array of `width`-number arrays (`count` of them, any count when 0), in the given scale.
+std::vector<std::array<double, 3>> rows_of(const core::JsonObject& obj, const char* key, std::size_t width,
+                                           std::size_t count, double scale) {
+  const auto& a = obj.array(key);
+  if (count != 0 && a.size() != count) obj.fail(key, fmt::format("must have {} entries, got {}", count, a.size()));
+  std::vector<std::array<double, 3>> out;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    if (!a[k].is_array() || a[k].size() != width) obj.fail(key, fmt::format("entry {} must be {} numbers", k, width));
+    std::array<double, 3> row{};
+    for (std::size_t m = 0; m < width; ++m) {
+      if (!a[k][m].is_number() || !std::isfinite(a[k][m].get<double>())) {
+        obj.fail(key, fmt::format("entry {} must contain only finite numbers, got {}", k, a[k][m].dump()));
+      }
+      row[m] = a[k][m].get<double>() * scale;
+    }
+    out.push_back(row);
+  }
+  return out;
+}
+
+std::unique_ptr<Model> physical_spline_model_from(const core::JsonObject& root,
+                                                  const std::optional<kinematics::FiveBarGeometry>& recorded) {
+  auto physical = physical_model_from(root, recorded);
+  if (physical->order() != 1) root.fail("order", "a physical-spline model's physical part has order 1");
+  const core::JsonObject r = root.object("residual_spline");
+  ResidualSpline s;
+  const auto [ox, oy] = r.pair("origin_mm");
+  s.origin_m = Vec2(ox * 1e-3, oy * 1e-3);
+  s.scale_m = r.positive("scale_mm") * 1e-3;
+  s.smoothing = r.number("smoothing");
+  if (!(s.smoothing >= 0.0)) r.fail("smoothing", "must be >= 0");
+  for (const auto& q : rows_of(r, "nodes_unit", 2, 0, 1.0)) s.nodes.emplace_back(q[0], q[1]);
+  if (s.nodes.size() < 3) r.fail("nodes_unit", "must list at least 3 nodes");
+  s.weights = rows_of(r, "weights_um_per_N", 3, s.nodes.size(), 1e-6);
+  const auto affine = rows_of(r, "affine_um_per_N", 3, 3, 1e-6);
+  std::copy(affine.begin(), affine.end(), s.affine.begin());
+  return std::make_unique<PhysicalSplineModel>(std::move(physical), std::move(s),
+                                               root.has("stats") ? root.raw()["stats"] : nlohmann::json::object());
 }
 
 // The robot block of a version-2 file: the geometry, checked against its recorded hash.
@@ -189,8 +230,10 @@ LoadedModel model_from_json(const core::JsonDocument& document) {
     out.model = grid_model_from(root, method);
   } else if (method == "physical") {
     out.model = physical_model_from(root, out.provenance.geometry);
+  } else if (method == "physical-spline") {
+    out.model = physical_spline_model_from(root, out.provenance.geometry);
   } else {
-    root.fail("method", "'" + method + "' is not one of bilinear, symmetric, physical");
+    root.fail("method", "'" + method + "' is not one of bilinear, symmetric, physical, physical-spline");
   }
   // Physics bounds the model, whatever its parameters: over its measured region (corners, edges' middles,
   // centre) every compliance entry is finite and within ±max_compliance_um_per_N.
@@ -200,7 +243,7 @@ LoadedModel model_from_json(const core::JsonDocument& document) {
       const Vec2 p{b.x_min + fx * (b.x_max - b.x_min), b.y_min + fy * (b.y_max - b.y_min)};
       const Mat2 c = out.model->compliance(p) * 1e6;
       if (!c.allFinite() || c.cwiseAbs().maxCoeff() > max_compliance_um_per_N) {
-        root.fail(method == "physical" ? "D_um_per_N" : "nodes",
+        root.fail(method == "physical" ? "D_um_per_N" : method == "physical-spline" ? "residual_spline" : "nodes",
                   fmt::format("RANGE: the model's compliance at ({:.1f}, {:.1f}) mm is [{:g} {:g}; {:g} {:g}] um/N, beyond "
                               "±{:g} um/N",
                               p.x() * 1e3, p.y() * 1e3, c(0, 0), c(0, 1), c(1, 0), c(1, 1), max_compliance_um_per_N));

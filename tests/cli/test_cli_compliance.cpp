@@ -39,11 +39,14 @@ TEST(CliCompliance, CvReportsTheIssueNumbers) {
   EXPECT_EQ(r.json()["rows"], "OC");
   EXPECT_TRUE(r.json()["could_not_run"].empty());
   const auto methods = r.json()["methods"];
-  ASSERT_EQ(methods.size(), 5u);
+  ASSERT_EQ(methods.size(), 6u);
   EXPECT_EQ(methods[0]["method"], "bilinear");
   EXPECT_NEAR(methods[0]["interior_mean_error_um"].get<double>(), 90.0, 5.0);
   EXPECT_EQ(methods[3]["method"], "physical");
   EXPECT_LT(methods[3]["interior_mean_error_um"].get<double>(), 25.0);
+  EXPECT_EQ(methods[5]["method"], "physical-spline");
+  EXPECT_LT(methods[5]["mean_error_um"].get<double>(), 0.8 * methods[3]["mean_error_um"].get<double>());
+  EXPECT_EQ(r.json()["favoured_method"], "physical-spline");
 }
 
 TEST(CliCompliance, ErrorsAreNamedAndLeaveNoFile) {

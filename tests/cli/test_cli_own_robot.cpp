@@ -92,7 +92,7 @@ TEST(CliOwnRobot, FitCvPredictRecoverTheKnownFieldBetweenTheNodes) {
   ASSERT_EQ(automatic.exit_code, 0) << automatic.err;
   EXPECT_EQ(automatic.json()["method"], "physical");
   EXPECT_EQ(automatic.json()["provenance"]["method_selected_by"], "cross-validation");
-  EXPECT_EQ(automatic.json()["provenance"]["selection"]["mean_error_um"].size(), 5U);
+  EXPECT_EQ(automatic.json()["provenance"]["selection"]["mean_error_um"].size(), 6U);
 }
 
 TEST(CliOwnRobot, RunCompensatesWithTheRobotsMassGeometryAndData) {

@@ -119,11 +119,15 @@ TEST(CrossValidation, PhysicalModelIsExactOnDataItCanRepresent) {
   const auto table = test::synthetic_table([&](const Vec2& p) { return truth->compliance(p); },
                                            [](const Vec2&) { return Vec2::Zero(); });
   const CvReport report = cross_validate(group_by_point(table, ForceConvention::measured), kThesis, table.source);
-  ASSERT_EQ(report.methods.size(), 5u);
+  ASSERT_EQ(report.methods.size(), 6u);
   const CvMethod& physical = report.methods[3];
   EXPECT_EQ(physical.method, "physical");
   EXPECT_EQ(physical.predicted, 15);
   EXPECT_LT(physical.max_um, 1e-6);
+  const CvMethod& spline = report.methods[5];  // its physical part takes it all, the spline nothing
+  EXPECT_EQ(spline.method, "physical-spline");
+  EXPECT_EQ(spline.predicted, 15);
+  EXPECT_LT(spline.max_um, 1e-6);
   const CvMethod& bilinear = report.methods[0];
   EXPECT_EQ(bilinear.predicted, 11);  // all but the four corners
   EXPECT_GT(bilinear.mean_um, 0.1);   // the field is not bilinear
@@ -182,7 +186,7 @@ TEST(ModelFile, RoundTripsEveryMethod) {
   const auto table = test::synthetic_table([](const Vec2& p) { return known_physical()->compliance(p); },
                                            [](const Vec2& p) { return Vec2(p.y() * 1e-4, 2e-6); }, 1e-6, 9);
   test::TempDir dir;
-  for (const std::string method : {"bilinear", "symmetric", "physical", "physical-2"}) {
+  for (const std::string method : {"bilinear", "symmetric", "physical", "physical-2", "physical-spline"}) {
     auto fitted = fit_model(table, "OC", method, ForceConvention::measured, kinematics::load_robot("oc-gu"));
     fitted.model->set_outside_policy(OutsidePolicy::extrapolate);
     fitted.model->set_zero_force(ZeroForce::thesis_raw);
@@ -225,7 +229,7 @@ TEST(ModelFile, BadFieldsAreNamed) {
   EXPECT_EQ(load_error(bad), "nodes[3].C_um_per_N: must be a 2x2 array [[a, b], [c, d]]");
   bad = good;
   bad["method"] = "spline";
-  EXPECT_EQ(load_error(bad), "method: 'spline' is not one of bilinear, symmetric, physical");
+  EXPECT_EQ(load_error(bad), "method: 'spline' is not one of bilinear, symmetric, physical, physical-spline");
   bad = good;
   bad["grid"]["x_mm"] = {1, 1, 2};
   EXPECT_EQ(load_error(bad), "grid.x_mm: must list at least two strictly increasing values");

@@ -141,15 +141,16 @@ TEST(RobotModels, CrossValidationOnAnIrregularLayoutRunsThePhysicalModelsOnly) {
   ASSERT_EQ(r.skipped.size(), 2U);
   EXPECT_EQ(r.skipped[0].method, "bilinear");
   EXPECT_EQ(r.skipped[1].method, "symmetric");
-  ASSERT_EQ(r.methods.size(), 3U);
+  ASSERT_EQ(r.methods.size(), 4U);
   EXPECT_EQ(r.methods[0].method, "physical-0");
+  EXPECT_EQ(r.methods[3].method, "physical-spline");
   EXPECT_EQ(r.methods[1].predicted, 14);
   int interior = 0;
   for (const auto& p : r.methods[1].points) interior += p.interior;
   EXPECT_EQ(interior, 2);  // x2y2 and x2y4: strictly inside the points' rectangle
   std::vector<std::pair<std::string, double>> scores;
   const std::string best = favoured_method(r, &scores);
-  ASSERT_EQ(scores.size(), 3U);
+  ASSERT_EQ(scores.size(), 4U);
   const auto smallest = std::min_element(scores.begin(), scores.end(),
                                          [](const auto& a, const auto& b) { return a.second < b.second; });
   EXPECT_EQ(best, smallest->first);
@@ -159,10 +160,11 @@ TEST(RobotModels, AutoPicksTheMethodCrossValidationFavoursAndRecordsWhy) {
   const auto robot = kinematics::load_robot("oc-gu");
   const auto table = measurement::load_displacement_table(robot.compliance.table);
   const LoadedModel m = fit_model(table, "OC", "auto", ForceConvention::measured, robot);
-  EXPECT_EQ(m.model->method(), "physical");  // 24.1 µm on the common points against 90.1 for bilinear
+  EXPECT_EQ(m.model->method(), "physical-spline");  // 16.3 µm on the common points against 90.1 for bilinear
   EXPECT_EQ(m.provenance.selected_by, "cross-validation");
   EXPECT_NEAR(m.provenance.selection["mean_error_um"]["bilinear"].get<double>(), 90.07, 0.01);
   EXPECT_NEAR(m.provenance.selection["mean_error_um"]["physical"].get<double>(), 24.12, 0.01);
+  EXPECT_LT(m.provenance.selection["mean_error_um"]["physical-spline"].get<double>(), 17.0);
   // The robot file's method wins over cross-validation: the presets keep the thesis's bilinear model.
   EXPECT_EQ(load_robot_model(robot).model->method(), "bilinear");
   EXPECT_EQ(load_robot_model(robot, {"", "physical", false, ForceConvention::measured}).model->method(), "physical");

@@ -92,7 +92,8 @@ class Model {
   }
 
   [[nodiscard]] OutsidePolicy outside_policy() const noexcept { return outside_; }
-  void set_outside_policy(OutsidePolicy policy) noexcept { outside_ = policy; }
+  //! Virtual so that a model built on another (physical-spline) passes the policy on.
+  virtual void set_outside_policy(OutsidePolicy policy) noexcept { outside_ = policy; }
   [[nodiscard]] ZeroForce zero_force() const noexcept { return zero_force_; }
   void set_zero_force(ZeroForce mode) noexcept { zero_force_ = mode; }
 

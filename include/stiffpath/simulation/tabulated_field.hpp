@@ -1,10 +1,9 @@
 // A smooth compliance field sampled once on a fine lattice and read back by bicubic interpolation: the twin's C_true at table speed.
 #pragma once
 
-#include <cstdint>
 #include <memory>
-#include <vector>
 
+#include "stiffpath/compliance/field_lattice.hpp"
 #include "stiffpath/compliance/model.hpp"
 
 namespace stiffpath::simulation {
@@ -27,23 +26,17 @@ class TabulatedModel final : public compliance::Model {
   //! The base's parameters, with the lattice's spacing and region.
   [[nodiscard]] nlohmann::json parameters() const override;
 
-  [[nodiscard]] const compliance::GridBounds& region() const noexcept { return region_; }
-  [[nodiscard]] double spacing_m() const noexcept { return h_; }
-  [[nodiscard]] std::size_t nodes() const noexcept { return values_.size(); }
+  [[nodiscard]] const compliance::GridBounds& region() const noexcept { return lattice_.region(); }
+  [[nodiscard]] double spacing_m() const noexcept { return lattice_.spacing_m(); }
+  [[nodiscard]] std::size_t nodes() const noexcept { return lattice_.nodes(); }
   //! Cells left to the base (not smooth enough on the lattice's scale).
-  [[nodiscard]] std::size_t exact_cells() const noexcept;
+  [[nodiscard]] std::size_t exact_cells() const noexcept { return lattice_.exact_cells(); }
   //! Whether compliance(p) reads the lattice (false: it asks the base).
-  [[nodiscard]] bool reads_lattice(const compliance::Vec2& p) const noexcept;
+  [[nodiscard]] bool reads_lattice(const compliance::Vec2& p) const noexcept { return lattice_.covers(p); }
 
  private:
   std::shared_ptr<const compliance::Model> base_;
-  compliance::GridBounds region_;
-  double h_;
-  double x0_ = 0.0, y0_ = 0.0;  // the lattice's node (0, 0), one spacing outside the region's corner
-  std::size_t nx_ = 0, ny_ = 0;
-  std::vector<compliance::Mat2> values_;  // node (i, j) at (x0 + i·h, y0 + j·h), index i·ny + j
-  std::vector<std::uint8_t> exact_;       // per cell (i, j), 1 ≤ i ≤ nx − 3: evaluate the base there
-  [[nodiscard]] compliance::Mat2 interpolate(std::size_t i, std::size_t j, double tx, double ty) const noexcept;
+  compliance::FieldLattice lattice_;
 };
 
 //! C_true's default lattice: 0.5 mm over the measured rectangle grown by max(50 mm, its larger side / 4).
