@@ -52,6 +52,9 @@ BENCHMARK_CAPTURE(BM_StepLatency, bilinear_dynamic, "thesis-oc", compensation::M
     ->Iterations(1)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_StepLatency, physical_dynamic, "thesis-oc-physical", compensation::Method::dynamic)
     ->Iterations(1)->Unit(benchmark::kMillisecond);
+// The model cross-validation favours on the thesis's tables (physical + residual spline, read from its lattice).
+BENCHMARK_CAPTURE(BM_StepLatency, physical_spline_dynamic, "thesis-oc-physical-spline", compensation::Method::dynamic)
+    ->Iterations(1)->Unit(benchmark::kMillisecond);
 
 void BM_StepThroughput(benchmark::State& state) {
   const auto samples = job_samples();

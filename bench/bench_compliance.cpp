@@ -45,6 +45,8 @@ BENCHMARK_CAPTURE(BM_Predict, bilinear, "thesis-oc");
 BENCHMARK_CAPTURE(BM_Predict, symmetric, "thesis-oc-symmetric");
 BENCHMARK_CAPTURE(BM_Predict, physical, "thesis-oc-physical");
 BENCHMARK_CAPTURE(BM_Predict, physical_order2, "thesis-oc-physical-2");
+// Physical + residual spline: read from its lattice inside the measured rectangle.
+BENCHMARK_CAPTURE(BM_Predict, physical_spline, "thesis-oc-physical-spline");
 
 // The physical model of a general (asymmetric) five-bar: U from the general inverse kinematics.
 void BM_PredictPhysicalGeneralGeometry(benchmark::State& state) {
@@ -70,15 +72,17 @@ void BM_PredictPhysicalGeneralGeometry(benchmark::State& state) {
 }
 BENCHMARK(BM_PredictPhysicalGeneralGeometry);
 
-void BM_FitPhysical(benchmark::State& state) {
+void BM_Fit(benchmark::State& state, const char* method) {
   const auto robot = stiffpath::kinematics::load_robot("oc-gu");
   const auto table = stiffpath::measurement::load_displacement_table(robot.compliance.table);
   for (auto _ : state) {
-    benchmark::DoNotOptimize(stiffpath::compliance::fit_model(table, "OC", "physical",
+    benchmark::DoNotOptimize(stiffpath::compliance::fit_model(table, "OC", method,
                                                               stiffpath::compliance::ForceConvention::measured, robot));
   }
 }
-BENCHMARK(BM_FitPhysical)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Fit, physical, "physical")->Unit(benchmark::kMillisecond);
+// Includes filling the 0.75 mm lattice (about 27 000 nodes and as many cell-centre checks).
+BENCHMARK_CAPTURE(BM_Fit, physical_spline, "physical-spline")->Unit(benchmark::kMillisecond);
 
 void BM_CrossValidation(benchmark::State& state) {
   const auto table =
