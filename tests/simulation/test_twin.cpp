@@ -52,6 +52,31 @@ TEST(Twin, CampaignFitRecoversTruthAtGridPoints) {
   }
 }
 
+TEST(Twin, TheFavouredModelFollowsTheStructuralFieldBetweenThePoints) {
+  // Cross-validation of the noisy campaign picks physical-spline, and between the measured points (where
+  // no per-point fit reaches) it stays closer to C_true, a field of neither family, than the physical model.
+  for (const char* build : {"oc-gu", "sc-gu"}) {
+    const auto robot = kinematics::load_robot(build);
+    const auto truth = make_true_compliance(robot);
+    CampaignFitOptions fit;
+    fit.method = "auto";
+    const auto favoured = fit_compensation_model(*truth, robot, fit);
+    EXPECT_EQ(favoured->method(), "physical-spline") << build;
+    fit.method = "physical";
+    const auto physical = fit_compensation_model(*truth, robot, fit);
+    const compliance::GridBounds b = truth->bounds();
+    double favoured_ss = 0.0, physical_ss = 0.0;
+    for (int i = 0; i <= 40; ++i) {
+      for (int j = 0; j <= 60; ++j) {
+        const compliance::Vec2 p(b.x_min + (b.x_max - b.x_min) * i / 40.0, b.y_min + (b.y_max - b.y_min) * j / 60.0);
+        favoured_ss += (favoured->compliance(p) - truth->compliance(p)).squaredNorm();
+        physical_ss += (physical->compliance(p) - truth->compliance(p)).squaredNorm();
+      }
+    }
+    EXPECT_LT(std::sqrt(favoured_ss), 0.7 * std::sqrt(physical_ss)) << build;
+  }
+}
+
 TEST(Twin, TrueComplianceIsSymmetricPositiveDefiniteAndPerturbed) {
   const auto oc = kinematics::load_robot("oc-gu");
   const auto base = make_true_compliance(oc, TrueComplianceOptions{"", 0.0, 1, "structural", nullptr});
