@@ -165,38 +165,29 @@ CvReport cross_validate(const std::vector<PointSamples>& points, const kinematic
                                         return from_neighbours(*grid, symmetric, node_of[k]);
                                       }));
   }
-  for (int order = 0; order <= 2; ++order) {
-    const std::string name = order == 1 ? "physical" : "physical-" + std::to_string(order);
-    const std::string description = "five-bar statics C = U^-T D(p) U^-1, D polynomial of order " + std::to_string(order);
+  // The model-based methods: refitted on every point but k, asked at k (extrapolating beyond the rest).
+  const auto refit_method = [&](const std::string& name, const std::string& description, auto fit) {
     try {
       report.methods.push_back(evaluate(name, description, points, interior, zero_force, [&](std::size_t k) {
         std::vector<PointSamples> rest;
         for (std::size_t m = 0; m < points.size(); ++m) {
           if (m != k) rest.push_back(points[m]);
         }
-        const auto model = fit_physical_model(rest, geometry, order, source);
+        const auto model = fit(rest);
         model->set_outside_policy(OutsidePolicy::extrapolate);
         return std::optional<Prediction>(Prediction{model->compliance(points[k].position), Vec2::Zero()});
       }));
     } catch (const Error& e) {
       report.skipped.push_back({name, e.message()});
     }
+  };
+  for (int order = 0; order <= 2; ++order) {
+    refit_method(order == 1 ? "physical" : "physical-" + std::to_string(order),
+                 "five-bar statics C = U^-T D(p) U^-1, D polynomial of order " + std::to_string(order),
+                 [&](const std::vector<PointSamples>& rest) { return fit_physical_model(rest, geometry, order, source); });
   }
-  try {
-    report.methods.push_back(evaluate(
-        "physical-spline", "physical (order 1) + thin-plate smoothing spline of its residual at the points", points,
-        interior, zero_force, [&](std::size_t k) {
-          std::vector<PointSamples> rest;
-          for (std::size_t m = 0; m < points.size(); ++m) {
-            if (m != k) rest.push_back(points[m]);
-          }
-          const auto model = fit_physical_spline_model(rest, geometry, source, false);
-          model->set_outside_policy(OutsidePolicy::extrapolate);
-          return std::optional<Prediction>(Prediction{model->compliance(points[k].position), Vec2::Zero()});
-        }));
-  } catch (const Error& e) {
-    report.skipped.push_back({"physical-spline", e.message()});
-  }
+  refit_method("physical-spline", "physical (order 1) + thin-plate smoothing spline of its residual at the points",
+               [&](const std::vector<PointSamples>& rest) { return fit_physical_spline_model(rest, geometry, source, false); });
   return report;
 }
 
