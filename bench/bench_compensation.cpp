@@ -68,12 +68,12 @@ void BM_StepThroughput(benchmark::State& state) {
 }
 BENCHMARK(BM_StepThroughput);
 
-void BM_StepThroughputDynamic(benchmark::State& state) {
+void BM_StepThroughputDynamic(benchmark::State& state, const char* model_name) {
   const auto samples = job_samples();
   compensation::CompensatorOptions options;
   options.method = compensation::Method::dynamic;
   const compensation::Compensator comp(kinematics::load_robot("oc-gu"),
-                                       std::shared_ptr<const compliance::Model>(compliance::load_model("thesis-oc").model.release()),
+                                       std::shared_ptr<const compliance::Model>(compliance::load_model(model_name).model.release()),
                                        options);
   std::size_t k = 0;
   for (auto _ : state) {
@@ -81,7 +81,9 @@ void BM_StepThroughputDynamic(benchmark::State& state) {
     if (++k == samples.size()) k = 0;
   }
 }
-BENCHMARK(BM_StepThroughputDynamic);
+BENCHMARK_CAPTURE(BM_StepThroughputDynamic, bilinear, "thesis-oc");
+BENCHMARK_CAPTURE(BM_StepThroughputDynamic, physical, "thesis-oc-physical");
+BENCHMARK_CAPTURE(BM_StepThroughputDynamic, physical_spline, "thesis-oc-physical-spline");
 
 // The step on a general five-bar (the asymmetric robot of examples/robots/): general inverse
 // kinematics and J̇, and the physical model with U from the robot's own geometry.

@@ -114,7 +114,8 @@ Mat2 PhysicalSplineModel::exact(const Vec2& p) const noexcept {
 }
 
 Mat2 PhysicalSplineModel::compliance(const Vec2& p) const noexcept {
-  return lattice_ && lattice_->covers(p) ? lattice_->at(p) : exact(p);
+  Mat2 c;
+  return lattice_ && lattice_->read(p, c) ? c : exact(p);
 }
 
 nlohmann::json PhysicalSplineModel::parameters() const {

@@ -30,7 +30,8 @@ TabulatedModel::TabulatedModel(std::shared_ptr<const compliance::Model> base, co
 }
 
 Mat2 TabulatedModel::compliance(const Vec2& p) const noexcept {
-  return lattice_.covers(p) ? lattice_.at(p) : base_->compliance(p);
+  Mat2 c;
+  return lattice_.read(p, c) ? c : base_->compliance(p);
 }
 
 nlohmann::json TabulatedModel::parameters() const {

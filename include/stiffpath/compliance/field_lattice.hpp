@@ -25,6 +25,8 @@ class FieldLattice {
   [[nodiscard]] bool covers(const Vec2& p) const noexcept;
   //! The interpolated field at p; only meaningful where covers(p).
   [[nodiscard]] Mat2 at(const Vec2& p) const noexcept;
+  //! covers(p) and at(p) in one pass: writes `out` and returns true where the lattice covers p.
+  [[nodiscard]] bool read(const Vec2& p, Mat2& out) const noexcept;
 
   [[nodiscard]] const GridBounds& region() const noexcept { return region_; }
   [[nodiscard]] double spacing_m() const noexcept { return h_; }
@@ -35,6 +37,7 @@ class FieldLattice {
  private:
   GridBounds region_;
   double h_;
+  double inverse_h_ = 0.0;
   double x0_ = 0.0, y0_ = 0.0;  // the lattice's node (0, 0), one spacing outside the region's corner
   std::size_t nx_ = 0, ny_ = 0;
   std::vector<Mat2> values_;       // node (i, j) at (x0 + i·h, y0 + j·h), index i·ny + j
