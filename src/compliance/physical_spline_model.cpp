@@ -98,7 +98,7 @@ PhysicalSplineModel::PhysicalSplineModel(std::unique_ptr<PhysicalModel> base, Re
     // The lattice covers the measured rectangle; its outer stencil nodes see the formula extended beyond it.
     base_->set_outside_policy(OutsidePolicy::extrapolate);
     lattice_.emplace(
-        [this](const Vec2& p) { return base_->compliance(p) + residual_.at(p); }, bounds(), lattice_spacing(bounds()),
+        [this](const Vec2& p) -> Mat2 { return base_->compliance(p) + residual_.at(p); }, bounds(), lattice_spacing(bounds()),
         kLatticeTolerance);
   }
   set_outside_policy(policy);
