@@ -105,12 +105,6 @@ bool FieldLattice::covers(const Vec2& p) const noexcept {
   return exact_[(i - 1) * (ny_ - 3) + (j - 1)] == 0;
 }
 
-Mat2 FieldLattice::at(const Vec2& p) const noexcept {
-  const double u = (p.x() - x0_) * inverse_h_, v = (p.y() - y0_) * inverse_h_;
-  const std::size_t i = cell_x(u), j = cell_y(v);
-  return interpolate(i, j, u - static_cast<double>(i), v - static_cast<double>(j));
-}
-
 std::size_t FieldLattice::exact_cells() const noexcept {
   return static_cast<std::size_t>(std::count(exact_.begin(), exact_.end(), std::uint8_t{1}));
 }

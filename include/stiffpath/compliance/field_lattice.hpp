@@ -21,11 +21,9 @@ class FieldLattice {
   FieldLattice(const std::function<Mat2(const Vec2&)>& field, const GridBounds& region, double spacing_m,
                double tolerance = 1e-6);
 
-  //! Whether at(p) may be used: p inside the region and in a cell the lattice follows.
+  //! Whether the lattice serves p: p inside the region and in a cell the lattice follows.
   [[nodiscard]] bool covers(const Vec2& p) const noexcept;
-  //! The interpolated field at p; only meaningful where covers(p).
-  [[nodiscard]] Mat2 at(const Vec2& p) const noexcept;
-  //! covers(p) and at(p) in one pass: writes `out` and returns true where the lattice covers p.
+  //! Where covers(p): writes the interpolated field at p to `out` and returns true; else false.
   [[nodiscard]] bool read(const Vec2& p, Mat2& out) const noexcept;
 
   [[nodiscard]] const GridBounds& region() const noexcept { return region_; }

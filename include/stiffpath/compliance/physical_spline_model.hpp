@@ -17,7 +17,7 @@ namespace stiffpath::compliance {
 
 //! The smoothing λ of the residual spline (in the spline's unit frame, where the points span 1): small
 //! enough that the spline follows the per-point fits to within their noise, large enough to keep its
-//! system well conditioned; the field changes by < 1 µm at 176 N between λ = 0 and 0.01 on the thesis's grid.
+//! system well conditioned (leave-one-out error on all thesis points: OC 30.8 µm at λ = 10⁻⁴, 32.0 µm at 0.01).
 inline constexpr double kResidualSmoothing = 0.01;
 
 //! A thin-plate smoothing spline of a symmetric 2×2 field over scattered points:
