@@ -15,7 +15,7 @@ namespace stiffpath::compliance {
 //! than `tolerance` (relative, Frobenius; default 10⁻⁶) off there is marked, and covers() is false in it and outside `region`,
 //! so that callers evaluate the field itself wherever the lattice cannot follow it. For fields that are
 //! expensive to evaluate and smooth on the lattice's scale. Filled in the constructor, only read after
-//! (thread-safe to read); at() is noexcept and allocation-free.
+//! (thread-safe to read); read() and covers() are noexcept and allocation-free.
 class FieldLattice {
  public:
   FieldLattice(const std::function<Mat2(const Vec2&)>& field, const GridBounds& region, double spacing_m,
