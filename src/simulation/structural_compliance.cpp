@@ -97,9 +97,8 @@ Mat3 arm_stiffness(const ArmPose& g, const detail::ArmSprings& a) {
   return kpp - bars * symmetric_inverse(kaa) * bars;
 }
 
-Mat2 network_compliance(const Pose& pose, const std::array<detail::ArmSprings, 2>& arms, const BaseCompliance& base,
-                        const Vec2& offset, const Vec2& p, const Vec2& a0) {
-  const Mat3 k = arm_stiffness(pose[0], arms[0]) + arm_stiffness(pose[1], arms[1]);
+// The compliance at the measured point from the arms' platform stiffness k (their sum) and the base.
+Mat2 network_compliance(const Mat3& k, const BaseCompliance& base, const Vec2& offset, const Vec2& p, const Vec2& a0) {
   // Force at G = C + offset: the wrench at C is (F, offset × F); G moves by δC + ψ·k × offset. So
   // C_G = Gᵀ·K⁻¹·G with G's columns (1, 0, −offset_y) and (0, 1, offset_x).
   const Mat3 kc = symmetric_inverse(k);
@@ -114,6 +113,11 @@ Mat2 network_compliance(const Pose& pose, const std::array<detail::ArmSprings, 2
   c(0, 0) += base.x_m_per_N;
   c(1, 1) += base.y_m_per_N;
   return c + base.rotation_rad_per_Nm * w * w.transpose();
+}
+
+Mat2 network_compliance(const Pose& pose, const std::array<detail::ArmSprings, 2>& arms, const BaseCompliance& base,
+                        const Vec2& offset, const Vec2& p, const Vec2& a0) {
+  return network_compliance(arm_stiffness(pose[0], arms[0]) + arm_stiffness(pose[1], arms[1]), base, offset, p, a0);
 }
 
 // The arms' poses at p (p within reach).
@@ -260,6 +264,9 @@ constexpr int kBase = 2 * kPerArm;
 constexpr int kOffset = kBase + 3;
 constexpr int kParams = kOffset + 2;
 
+// Whether parameter k is a bar offset of an arm (the only parameters the flatness guard depends on).
+bool is_arm_offset(int k) { return k < kBase && k % kPerArm >= ArmCompliance::count; }
+
 struct Unpacked {
   std::array<ArmCompliance, 2> arms;
   BaseCompliance base;
@@ -291,7 +298,7 @@ constexpr std::array<double, ArmCompliance::count> kFloor{1e-7, 1e-6, 1e-9, 1e-9
 std::pair<Eigen::VectorXd, Eigen::VectorXd> bounds() {
   Eigen::VectorXd lo(kParams), hi(kParams);
   for (int k = 0; k < kParams; ++k) {
-    const bool offset = k >= kOffset || (k < kBase && k % kPerArm >= ArmCompliance::count);
+    const bool offset = k >= kOffset || is_arm_offset(k);
     const double floor = k < kBase && !offset ? kFloor[static_cast<std::size_t>(k % kPerArm)] : 1e-14;
     lo(k) = offset ? -kStructuralMaxOffset_m : std::log(floor);
     hi(k) = offset ? kStructuralMaxOffset_m : (k >= kBase ? 0.0 : std::log(1e2));
@@ -352,6 +359,25 @@ struct Descent {
   bool stopped = false;
 };
 
+// The parameters of arm i are x(i·kPerArm) … x(i·kPerArm + kPerArm − 1); -2 for the base's and the offset's.
+int arm_of(int k) { return k < kBase ? k / kPerArm : -2; }
+
+// The fit's residuals in two parts: the table's cells (every parameter) and the flatness guard (the arms' bar
+// offsets only). For the Jacobian, `at(x)` keeps each arm's platform stiffness at every table point, so that
+// `varied(xp, k)` recomputes only the arm whose parameter k was changed (none for the base's and the offset's):
+// the same numbers as a full evaluation, with fewer arms to condense.
+template <class Table, class Guard>
+struct SplitCost {
+  Table table;  // table(x, arm_to_evaluate, kept) → residuals; kept: the other arm's stiffnesses or nullptr
+  Guard guard;
+  Eigen::VectorXd operator()(const Eigen::VectorXd& x) const {
+    const Eigen::VectorXd t = table(x, -1, nullptr), g = guard(x);
+    Eigen::VectorXd r(t.size() + g.size());
+    r << t, g;
+    return r;
+  }
+};
+
 // Continues `d` by up to `iterations` steps.
 template <class Cost>
 void descend(Descent& d, const Cost& cost, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi, int iterations) {
@@ -359,13 +385,24 @@ void descend(Descent& d, const Cost& cost, const Eigen::VectorXd& lo, const Eige
   double& lambda = d.lambda;
   x = x.cwiseMax(lo).cwiseMin(hi);
   Eigen::VectorXd r = cost(x);
+  std::array<std::vector<Mat3>, 2> kept;  // each arm's stiffness at the table's points, at x
+  const Eigen::Index table_rows = cost.table(x, -1, nullptr).size();
   Eigen::MatrixXd J(r.size(), kParams);
   for (int it = 0; it < iterations && !d.stopped; ++it) {
+    const Eigen::VectorXd rt = r.head(table_rows), rg = r.tail(r.size() - table_rows);
+    cost.table(x, -1, &kept);
     for (int k = 0; k < kParams; ++k) {
       Eigen::VectorXd xp = x;
-      const double h = k >= kOffset || (k < kBase && k % kPerArm >= ArmCompliance::count) ? 1e-6 : 1e-5;
+      const double h = k >= kOffset || is_arm_offset(k) ? 1e-6 : 1e-5;
       xp(k) += h;
-      J.col(k) = (cost(xp) - r) / h;
+      J.col(k).head(table_rows) = (cost.table(xp, arm_of(k), &kept) - rt) / h;
+      // The guard depends on the bar offsets alone: its other columns are exactly the zeros that differencing
+      // it would give.
+      if (is_arm_offset(k)) {
+        J.col(k).tail(rg.size()) = (cost.guard(xp) - rg) / h;
+      } else {
+        J.col(k).tail(rg.size()).setZero();
+      }
     }
     const Eigen::MatrixXd A = J.transpose() * J;
     const Eigen::VectorXd g = J.transpose() * r;
@@ -438,16 +475,32 @@ std::shared_ptr<StructuralModel> fit_structural_model(const kinematics::Robot& r
     }
   }
   const Vec2 a0 = midpoint(five_bar);
-  const auto table_cells = static_cast<Eigen::Index>(c.cells.size());
   const auto& geometry = five_bar.geometry();
-  auto cost = [&](const Eigen::VectorXd& x) {
+  // arm = -1 and kept = nullptr: a full evaluation; arm = -1 with kept: the same, filling kept with both arms'
+  // stiffnesses; arm = 0 or 1 with kept: that arm evaluated, the other read from kept; arm = -2 (the base's and
+  // the offset's parameters) with kept: both arms read from kept.
+  auto table_cost = [&](const Eigen::VectorXd& x, int arm, std::array<std::vector<Mat3>, 2>* kept) -> Eigen::VectorXd {
     const Unpacked u = unpack(x);
     const auto springs = arm_springs(u.arms, geometry);
-    Eigen::VectorXd r(table_cells + static_cast<Eigen::Index>(4 * guard.size()));
-    r.head(table_cells) = 1e6 * residuals(c, [&](std::size_t k) {
-      return network_compliance(poses[k], springs, u.base, u.offset, c.points[k], a0);
+    const bool fill = kept && arm == -1;
+    if (fill) {
+      for (auto& v : *kept) v.resize(poses.size());
+    }
+    return 1e6 * residuals(c, [&](std::size_t k) {
+      Mat3 s[2];
+      for (int i = 0; i < 2; ++i) {
+        const auto ui = static_cast<std::size_t>(i);
+        const bool reuse = kept && !fill && arm != i;
+        s[i] = reuse ? (*kept)[ui][k] : arm_stiffness(poses[k][ui], springs[ui]);
+        if (fill) (*kept)[ui][k] = s[i];
+      }
+      return network_compliance(s[0] + s[1], u.base, u.offset, c.points[k], a0);
     });
-    Eigen::Index k = table_cells;
+  };
+  auto guard_cost = [&](const Eigen::VectorXd& x) {
+    const Unpacked u = unpack(x);
+    Eigen::VectorXd r(static_cast<Eigen::Index>(4 * guard.size()));
+    Eigen::Index k = 0;
     for (const Pose& g : guard) {
       for (std::size_t i = 0; i < 2; ++i) {
         r(k++) = flatness(u.arms[i].proximal_bar_offset_m, g[i].e);
@@ -456,6 +509,7 @@ std::shared_ptr<StructuralModel> fit_structural_model(const kinematics::Robot& r
     }
     return r;
   };
+  const SplitCost<decltype(table_cost), decltype(guard_cost)> cost{table_cost, guard_cost};
   const auto [lo, hi] = bounds();
   // Every start descends a little; the most promising go on, each exactly as an uninterrupted run would (a
   // start stopped by then is already final). For both thesis robots the winner of all 16 run to the end
