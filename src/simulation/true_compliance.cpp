@@ -8,7 +8,7 @@
 #include "stiffpath/compliance/model_factory.hpp"
 #include "stiffpath/compliance/model_file.hpp"
 #include "stiffpath/core/error.hpp"
-#include "stiffpath/simulation/structural_compliance.hpp"
+#include "stiffpath/simulation/structural_fit_store.hpp"
 #include "stiffpath/simulation/tabulated_field.hpp"
 #include "stiffpath/simulation/twin_models.hpp"
 
@@ -78,7 +78,8 @@ std::shared_ptr<const compliance::Model> make_true_base(const kinematics::Robot&
     if (options.family == "structural") {
       // The structure costs an inverse kinematics and a network of arms per point; the plant reads it
       // every 20 kHz step, from a 0.5 mm lattice (within 10⁻⁵ of the structure, tabulated_field.hpp).
-      return tabulate_true_field(fit_structural_model(robot, compliance::robot_table(robot)));
+      // The built-in robots' fits are stored with the library (the same numbers, without the fit's time).
+      return tabulate_true_field(stored_or_fitted_structural_model(robot, compliance::robot_table(robot)));
     }
     if (options.family != "physical") {
       throw Error(fmt::format("unknown C_true family '{}' (known: structural, physical)", options.family));

@@ -70,6 +70,8 @@ class StructuralModel final : public compliance::Model {
   [[nodiscard]] compliance::GridBounds bounds() const noexcept override { return region_; }
   [[nodiscard]] nlohmann::json parameters() const override;
   [[nodiscard]] const std::array<ArmCompliance, 2>& arms() const noexcept { return arms_; }
+  [[nodiscard]] const BaseCompliance& base() const noexcept { return base_; }
+  [[nodiscard]] const compliance::Vec2& measured_offset() const noexcept { return offset_; }
 
  private:
   kinematics::FiveBar five_bar_;
