@@ -88,9 +88,11 @@ void run(const RunArgs& a) {
     model.reset(loaded.model.release());
   }
   const double damping_ratio = a.damping_ratio.value_or(robot.tip_damping_ratio);
-  compensation::CompensatorOptions comp_options{a.gain, !a.no_compensation, true};
-  comp_options.method = compensation::parse_method(a.method);
-  comp_options.damping_ratio = damping_ratio;
+  const compensation::CompensatorOptions comp_options{.gain = a.gain,
+                                                      .enabled = !a.no_compensation,
+                                                      .check_limits = true,
+                                                      .method = compensation::parse_method(a.method),
+                                                      .damping_ratio = damping_ratio};
   const compensation::Compensator compensator(robot, model, comp_options);
   const auto shaper = compensation::parse_filter_kind(a.shaper);
   if (shaper == compensation::FilterKind::smooth) throw Error("--shaper: expected none, zv or zvd, got 'smooth' (see --smooth-ms)");
