@@ -11,6 +11,7 @@
 
 #include "stiffpath/compliance/model_factory.hpp"
 #include "stiffpath/simulation/structural_compliance.hpp"
+#include "stiffpath/simulation/structural_fit_store.hpp"
 #include "structural_floors.hpp"
 
 namespace stiffpath::simulation {
@@ -65,8 +66,9 @@ TEST(Structural, ReproducesTheThesisTablesWithinTheCmmTolerance) {
   for (const char* build : {"oc-gu", "sc-gu", "oc-gl", "sc-gl"}) {
     const auto robot = kinematics::load_robot(build);
     const auto table = compliance::robot_table(robot);
-    StructuralFitReport rep;
-    const auto model = fit_structural_model(robot, table, &rep);
+    // The twin's C_true: the stored fit, which StructuralStore.* checks is what fit_structural_model gives.
+    const auto model = stored_or_fitted_structural_model(robot, table);
+    const StructuralFitReport rep = structural_fit_report(*model, table);
     const Floor symmetric = testing::symmetric_floor(table), fit = testing::model_misfit(*model, table);
     ASSERT_EQ(fit.cells.size(), symmetric.cells.size());
     std::printf("%s: %d cells, %d within 23 um, max %.1f um, rms %.1f um; symmetric floor: %d within\n", build,
@@ -112,12 +114,8 @@ TEST(Structural, ReproducesTheThesisTablesWithinTheCmmTolerance) {
   }
 }
 
-// The fit is deterministic: the same table gives the same parameters, to the last bit.
-TEST(Structural, FitIsDeterministic) {
-  const auto robot = kinematics::load_robot("sc-gu");
-  const auto table = compliance::robot_table(robot);
-  EXPECT_EQ(fit_structural_model(robot, table)->parameters().dump(), fit_structural_model(robot, table)->parameters().dump());
-}
+// That the fit is deterministic — the same table gives the same parameters to the last bit, in this process and in
+// the one that wrote the stored fits — is StructuralStore.EveryBuiltInRobotsFitIsStoredAndIsWhatTheFitGives.
 
 // The network reduces to the classical result: with rigid links, parallelogram bars that carry nothing (the distal
 // links are two-force members) and actuator springs κ_i only, C = J·diag(κ)·Jᵀ (J of eq. 2.1).

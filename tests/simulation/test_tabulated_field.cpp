@@ -8,6 +8,7 @@
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/kinematics/robot.hpp"
 #include "stiffpath/simulation/structural_compliance.hpp"
+#include "stiffpath/simulation/structural_fit_store.hpp"
 #include "stiffpath/simulation/tabulated_field.hpp"
 
 namespace stiffpath::simulation {
@@ -62,7 +63,7 @@ TEST(TabulatedField, ReproducesABilinearFieldAndLeavesPointsOutsideItsRegionToTh
 TEST(TabulatedField, AgreesWithTheStructuralFieldItSamples) {
   for (const char* name : {"oc-gu", "sc-gu"}) {
     const kinematics::Robot robot = kinematics::load_robot(name);
-    const auto structural = fit_structural_model(robot, compliance::robot_table(robot));
+    const auto structural = stored_or_fitted_structural_model(robot, compliance::robot_table(robot));
     const auto table = tabulate_true_field(structural);
     const auto& lattice = dynamic_cast<const TabulatedModel&>(*table);
     const GridBounds b = structural->bounds(), region = lattice.region();
