@@ -30,7 +30,7 @@ std::shared_ptr<StructuralModel> structural_model_from_record(const kinematics::
 
 //! The structural model of `robot` fitted to `table`: read from the fits compiled into the library
 //! (data/twin/structural_fits.json) when one has this exact key, so the built-in robots' twins start without the
-//! fit's 0.3–0.5 s; otherwise fitted (fit_structural_model). Either way the same numbers: a test refits every
+//! fit's 0.3–0.5 s; otherwise fitted (fit_structural_model). Either way the same model: a test refits every
 //! stored entry and compares.
 std::shared_ptr<StructuralModel> stored_or_fitted_structural_model(const kinematics::Robot& robot,
                                                                    const measurement::DisplacementTable& table);
