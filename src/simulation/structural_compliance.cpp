@@ -363,9 +363,9 @@ struct Descent {
 int arm_of(int k) { return k < kBase ? k / kPerArm : -2; }
 
 // The fit's residuals in two parts: the table's cells (every parameter) and the flatness guard (the arms' bar
-// offsets only). For the Jacobian, `at(x)` keeps each arm's platform stiffness at every table point, so that
-// `varied(xp, k)` recomputes only the arm whose parameter k was changed (none for the base's and the offset's):
-// the same numbers as a full evaluation, with fewer arms to condense.
+// offsets only). For the Jacobian, `table(x, -1, &kept)` keeps each arm's platform stiffness at every table point,
+// so that `table(xp, arm_of(k), &kept)` recomputes only the arm whose parameter k was changed (none for the base's
+// and the offset's): the same numbers as a full evaluation, with fewer arms to condense.
 template <class Table, class Guard>
 struct SplitCost {
   Table table;  // table(x, arm_to_evaluate, kept) → residuals; kept: the other arm's stiffnesses or nullptr

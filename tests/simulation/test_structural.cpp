@@ -114,8 +114,13 @@ TEST(Structural, ReproducesTheThesisTablesWithinTheCmmTolerance) {
   }
 }
 
-// That the fit is deterministic — the same table gives the same parameters to the last bit, in this process and in
-// the one that wrote the stored fits — is StructuralStore.EveryBuiltInRobotsFitIsStoredAndIsWhatTheFitGives.
+// The fit is deterministic: the same table gives the same parameters, to the last bit. (That the stored fits are
+// what it gives is StructuralStore.EveryBuiltInRobotsFitIsStoredAndIsWhatTheFitGives.)
+TEST(Structural, FitIsDeterministic) {
+  const auto robot = kinematics::load_robot("sc-gu");
+  const auto table = compliance::robot_table(robot);
+  EXPECT_EQ(fit_structural_model(robot, table)->parameters().dump(), fit_structural_model(robot, table)->parameters().dump());
+}
 
 // The network reduces to the classical result: with rigid links, parallelogram bars that carry nothing (the distal
 // links are two-force members) and actuator springs κ_i only, C = J·diag(κ)·Jᵀ (J of eq. 2.1).
