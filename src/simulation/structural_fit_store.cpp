@@ -28,6 +28,11 @@ std::string structural_fit_key(const kinematics::Robot& robot, const measurement
     text += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g}\n", g.actuator_m[i].x(), g.actuator_m[i].y(), g.proximal_m[i],
                         g.distal_m[i]);
   }
+  // The fit solves the inverse kinematics of robot.five_bar(): the margin decides which guard points are reachable,
+  // the joints' lower limits the window the angles are wrapped into.
+  const auto& m = robot.margin;
+  text += fmt::format("margin {:.17g},{:.17g},{:.17g}\nangle floor {:.17g},{:.17g}\n", m.min_distance_m,
+                      m.max_condition_number, m.min_distal_angle_rad, robot.joints[0].min_rad, robot.joints[1].min_rad);
   const auto number = [](const std::optional<double>& v) { return v ? fmt::format("{:.17g}", *v) : std::string("-"); };
   for (const auto& r : table.rows) {
     text += fmt::format("{},{:.17g},{:.17g},{},{:.17g},{},{}\n", r.point, r.x_m, r.y_m, measurement::to_string(r.direction),

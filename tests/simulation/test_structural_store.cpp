@@ -79,6 +79,16 @@ TEST(StructuralStore, TheKeyChangesWithEverythingTheFitReads) {
   auto other = robot;
   other.geometry.proximal_m[0] += 1e-6;
   EXPECT_NE(structural_fit_key(other, table), key);
+  // The same arms and table with another singularity margin or joint window: other guard points, other angles.
+  auto margin = robot;
+  margin.margin.min_distance_m += 1e-3;
+  EXPECT_NE(structural_fit_key(margin, table), key);
+  auto condition = robot;
+  condition.margin.max_condition_number *= 2.0;
+  EXPECT_NE(structural_fit_key(condition, table), key);
+  auto window = robot;
+  window.joints[1].min_rad -= 0.1;
+  EXPECT_NE(structural_fit_key(window, table), key);
 }
 
 TEST(StructuralStore, ARecordReadsBackToTheSameModel) {

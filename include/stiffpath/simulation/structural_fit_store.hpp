@@ -16,8 +16,8 @@ namespace stiffpath::simulation {
 inline constexpr int kStructuralFitVersion = 1;
 
 //! SHA-256 of what the fit reads: kStructuralFitVersion, the robot's geometry (its hash and the exact lengths and
-//! actuator positions) and every row's point,
-//! position, load direction, force and translations (17 significant digits).
+//! actuator positions), its singularity margin and joints' lower limits (the kinematics the fit solves) and every
+//! row's point, position, load direction, force and translations (17 significant digits).
 std::string structural_fit_key(const kinematics::Robot& robot, const measurement::DisplacementTable& table);
 
 //! The model's parameters in SI, every double written so that it reads back to the same bits.
