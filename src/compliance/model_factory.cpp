@@ -96,6 +96,12 @@ measurement::DisplacementTable robot_table(const kinematics::Robot& robot) {
   return rows;
 }
 
+GridBounds table_region(const measurement::DisplacementTable& table) {
+  auto b = GridBounds::none();
+  for (const auto& r : table.rows) b.include({r.x_m, r.y_m});
+  return b;
+}
+
 void check_model_geometry(const LoadedModel& model, const kinematics::Robot& robot, bool force) {
   if (force) return;
   const Provenance& p = model.provenance;

@@ -20,8 +20,7 @@ namespace {
 // The rectangle of the robot's measurement points (its table's rows), m.
 compliance::GridBounds measured_region(const kinematics::Robot& robot) {
   const auto table = compliance::robot_table(robot);
-  auto b = compliance::GridBounds::none();
-  for (const auto& r : table.rows) b.include({r.x_m, r.y_m});
+  const compliance::GridBounds b = compliance::table_region(table);
   if (!(b.x_max > b.x_min) || !(b.y_max > b.y_min)) {
     throw Error(SourceLocation{table.source}, "the measurement points must spread over x and y to place test motions");
   }

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "stiffpath/compliance/model_factory.hpp"
 #include "stiffpath/core/error.hpp"
 
 namespace stiffpath::simulation {
@@ -230,12 +231,6 @@ Cells cells_of(const measurement::DisplacementTable& table) {
   return out;
 }
 
-compliance::GridBounds region_of(const measurement::DisplacementTable& table) {
-  auto b = compliance::GridBounds::none();
-  for (const auto& r : table.rows) b.include({r.x_m, r.y_m});
-  return b;
-}
-
 // Residuals C·F + n_s − d of every cell, n_s the offset of its load series (eq. 4.8's intercept: the readings
 // at step 0 carry settling and hysteresis that no compliance reproduces), set to the series' mean misfit.
 template <class ComplianceAt>
@@ -452,7 +447,7 @@ std::shared_ptr<StructuralModel> fit_structural_model(const kinematics::Robot& r
   if (c.cells.size() < static_cast<std::size_t>(kParams)) {
     throw Error(SourceLocation{table.source}, "structural model: the table has too few translations (dx, dy) to fit");
   }
-  const compliance::GridBounds region = region_of(table);
+  const compliance::GridBounds region = compliance::table_region(table);
   const kinematics::FiveBar five_bar = robot.five_bar();
   // The poses at the table's points do not depend on the parameters: solve them once.
   std::vector<Pose> poses;

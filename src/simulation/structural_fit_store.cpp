@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "stiffpath/compliance/model_factory.hpp"
 #include "stiffpath/core/embedded.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/core/sha256.hpp"
@@ -82,9 +83,7 @@ std::shared_ptr<StructuralModel> stored_or_fitted_structural_model(const kinemat
     const std::string key = structural_fit_key(robot, table);
     for (const nlohmann::json& entry : store.at("fits")) {
       if (entry.at("key").get<std::string>() == key) {
-        auto region = compliance::GridBounds::none();
-        for (const auto& r : table.rows) region.include({r.x_m, r.y_m});
-        return structural_model_from_record(robot, entry.at("model"), region);
+        return structural_model_from_record(robot, entry.at("model"), compliance::table_region(table));
       }
     }
   }

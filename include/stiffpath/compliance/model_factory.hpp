@@ -76,4 +76,7 @@ void check_model_geometry(const LoadedModel& model, const kinematics::Robot& rob
 //! The robot's displacement table restricted to its rows; throws when it has none.
 measurement::DisplacementTable robot_table(const kinematics::Robot& robot);
 
+//! The rectangle of a table's measurement points (its rows' positions), m.
+GridBounds table_region(const measurement::DisplacementTable& table);
+
 }  // namespace stiffpath::compliance
