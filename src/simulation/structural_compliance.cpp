@@ -381,7 +381,7 @@ void descend(Descent& d, const Cost& cost, const Eigen::VectorXd& lo, const Eige
   x = x.cwiseMax(lo).cwiseMin(hi);
   Eigen::VectorXd r = cost(x);
   std::array<std::vector<Mat3>, 2> kept;  // each arm's stiffness at the table's points, at x
-  const Eigen::Index table_rows = cost.table(x, -1, nullptr).size();
+  const Eigen::Index table_rows = r.size() - cost.guard(x).size();
   Eigen::MatrixXd J(r.size(), kParams);
   for (int it = 0; it < iterations && !d.stopped; ++it) {
     const Eigen::VectorXd rt = r.head(table_rows), rg = r.tail(r.size() - table_rows);
