@@ -160,7 +160,10 @@ stiffpath_compensator* stiffpath_compensator_create(const char* robot, const cha
           default: throw sp::Error("outside_policy " + std::to_string(o.outside_policy) + " is not one of 0..3");
         }
         const std::shared_ptr<const sp::compliance::Model> shared(std::move(loaded.model));
-        sp::compensation::CompensatorOptions co{o.gain, o.enabled != 0, o.check_limits != 0};
+        sp::compensation::CompensatorOptions co;
+        co.gain = o.gain;
+        co.enabled = o.enabled != 0;
+        co.check_limits = o.check_limits != 0;
         switch (o.method) {
           case STIFFPATH_METHOD_QUASI_STATIC: co.method = sp::compensation::Method::quasi_static; break;
           case STIFFPATH_METHOD_DYNAMIC: co.method = sp::compensation::Method::dynamic; break;

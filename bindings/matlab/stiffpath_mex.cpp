@@ -235,7 +235,7 @@ void compensate(int, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
   request.model = model_name;
   auto loaded = stiffpath::compliance::load_robot_model(robot, request);
   const mxArray* options = nullptr;
-  stiffpath::compensation::CompensatorOptions comp{1.0, true, true};
+  stiffpath::compensation::CompensatorOptions comp;
   comp.method = stiffpath::compensation::Method::dynamic;
   stiffpath::compensation::RunFilterOptions filter;
   if (nrhs == 5) {

@@ -78,9 +78,11 @@ PyCompensator make_compensator(const kinematics::Robot& robot, const std::option
     compliance::LoadedModel check{nullptr, used.provenance, used.label};
     compliance::check_model_geometry(check, robot, false);
   }
-  compensation::CompensatorOptions options{gain, enabled, check_limits};
-  options.method = compensation::parse_method(method);
-  options.damping_ratio = damping_ratio;
+  const compensation::CompensatorOptions options{.gain = gain,
+                                                 .enabled = enabled,
+                                                 .check_limits = check_limits,
+                                                 .method = compensation::parse_method(method),
+                                                 .damping_ratio = damping_ratio};
   auto compensator = std::make_shared<Compensator>(robot, used.model, options);
   return {std::move(compensator), std::move(used)};
 }

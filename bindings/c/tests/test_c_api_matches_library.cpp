@@ -34,7 +34,9 @@ TEST_P(CApi, StepEqualsTheLibrarysStepFieldByField) {
 
   const auto spec = kinematics::load_robot(c.robot);
   const std::shared_ptr<const compliance::Model> model(compliance::load_model(c.model).model.release());
-  const compensation::Compensator library(spec, model, {c.gain, true, true});
+  compensation::CompensatorOptions library_options;
+  library_options.gain = c.gain;
+  const compensation::Compensator library(spec, model, library_options);
 
   std::mt19937_64 rng(18);
   std::uniform_real_distribution<double> x(0.160, 0.296), y(-0.09, 0.09), v(-4.0, 4.0), a(-40, 40), j(-4e4, 4e4);
