@@ -67,4 +67,25 @@ double reachable_speed(double length_m, double v_from_m_s, double max_accelerati
   return v0 + dv;
 }
 
+double fastest_speed_up(double distance_m, double v0_m_s, double max_acceleration_m_s2, double max_jerk_m_s3) noexcept {
+  const double v0 = v0_m_s, a = max_acceleration_m_s2, j = max_jerk_m_s3;
+  if (!(distance_m > 0.0)) return v0;
+  const double ramp_s = a / j;
+  const double ramp_m = v0 * ramp_s + j * ramp_s * ramp_s * ramp_s / 6.0;
+  if (distance_m > ramp_m) {
+    const double v1 = v0 + 0.5 * a * ramp_s;
+    return std::sqrt(v1 * v1 + 2.0 * a * (distance_m - ramp_m));
+  }
+  // j·t³/6 + v0·t = s by Newton from above: both starts lie at or above the root and the cubic is
+  // convex for t ≥ 0, so every step stays above it.
+  double t = std::cbrt(6.0 * distance_m / j);
+  if (v0 > 0.0) t = std::min(t, distance_m / v0);
+  for (int k = 0; k < 100; ++k) {
+    const double step = (j * t * t * t / 6.0 + v0 * t - distance_m) / (0.5 * j * t * t + v0);
+    if (!(step > 1e-14 * t)) break;
+    t -= step;
+  }
+  return v0 + 0.5 * j * t * t;
+}
+
 }  // namespace stiffpath::motion

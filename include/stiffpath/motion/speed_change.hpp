@@ -39,4 +39,13 @@ double max_entry_speed(double length_m, double exit_max_m_s, double max_accelera
 double max_exit_speed(double length_m, double entry_m_s, double exit_max_m_s, double max_acceleration_m_s2,
                       double max_jerk_m_s3) noexcept;
 
+//! The speed `distance_m` after the start of the fastest speed-up from v0 at zero acceleration (jerk
+//! j until the acceleration reaches a, then a), not capped by any velocity limit. No profile of the
+//! planner that starts at v0 with zero acceleration is faster at that distance: along a speed-up
+//! the acceleration at each speed is at most the fastest one's (a² ≤ 2·j·(v − v0), a ≤ a_max), so
+//! each speed is reached no sooner in distance, and after the peak the speed only falls. By time
+//! reversal the same bound holds counted back from the profile's end at its exit speed. Rounded
+//! up (the time is solved from above).
+double fastest_speed_up(double distance_m, double v0_m_s, double max_acceleration_m_s2, double max_jerk_m_s3) noexcept;
+
 }  // namespace stiffpath::motion
