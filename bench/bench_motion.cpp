@@ -179,7 +179,9 @@ enum class CamStage { path, plan, sample };
 void BM_CamProgram(benchmark::State& state) {
   const std::string program = stiffpath::bench::cam_program(100000);
   const auto stage = static_cast<CamStage>(state.range(0));
-  std::size_t segments = 0, runs = 0, evaluations = 0;
+  PlannerOptions options;
+  options.join_runs = state.range(1) != 0;
+  std::size_t segments = 0, runs = 0, evaluations = 0, joined = 0;
   for (auto _ : state) {
     std::istringstream in(program);
     GcodeReader reader(in, "cam.gcode");
@@ -189,7 +191,7 @@ void BM_CamProgram(benchmark::State& state) {
       while (auto s = blender.next()) ++segments;
       continue;
     }
-    Planner planner(blender, MotionLimits{});
+    Planner planner(blender, MotionLimits{}, options);
     if (stage == CamStage::plan) {
       while (auto s = planner.next()) ++segments;
     } else {
@@ -199,14 +201,23 @@ void BM_CamProgram(benchmark::State& state) {
     }
     runs = planner.statistics().runs;
     evaluations = planner.statistics().entry_evaluations;
+    joined = planner.statistics().joined_runs;
   }
+  state.counters["joined_runs"] = static_cast<double>(joined);
   state.counters["segments"] = static_cast<double>(segments);
   state.counters["runs"] = static_cast<double>(runs);
   state.counters["entry_evaluations"] = static_cast<double>(evaluations);
   state.counters["ns_per_segment"] =
       benchmark::Counter(static_cast<double>(segments), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
-BENCHMARK(BM_CamProgram)->ArgName("stage")->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+// join 0: each run keeps its own profile (PlannerOptions::join_runs = false), to price the joining.
+BENCHMARK(BM_CamProgram)
+    ->ArgNames({"stage", "join"})
+    ->Args({0, 1})
+    ->Args({1, 0})
+    ->Args({1, 1})
+    ->Args({2, 1})
+    ->Unit(benchmark::kMillisecond);
 
 void BM_CamRunJob(benchmark::State& state, job::OutputFormat format) {
   const auto dir = std::filesystem::temp_directory_path();

@@ -4,7 +4,11 @@
 #include <algorithm>
 #include <fmt/format.h>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
+#include "stiffpath/motion/junction.hpp"
+#include "stiffpath/motion/segment_limits.hpp"
 #include "stiffpath/motion/speed_change.hpp"
 
 namespace stiffpath::motion {
@@ -102,9 +106,18 @@ void Planner::backward_pass() {
 // Forward pass for the front run: its exit is what the backward pass allows and what can be reached
 // from its entry. Solves its profile; its segments are then handed out by emit().
 void Planner::begin_release() {
-  const Node node = window_.front();
+  const Merge merge = plan_merge();
+  const Node& node = merge.node;
+  // The joined runs' segments continue the front run's arc length.
+  double offset_m = window_.front().length_m;
+  std::size_t member = window_.front().members;
+  for (std::size_t k = 1; k < merge.runs; ++k) {
+    for (std::size_t i = 0; i < window_[k].members; ++i) members_[member + i].offset_m += offset_m;
+    member += window_[k].members;
+    offset_m += window_[k].length_m;
+  }
   const double exit = node.dwell ? 0.0
-                                 : max_exit_speed(node.length_m, entry_speed_m_s_, exit_max(0),
+                                 : max_exit_speed(node.length_m, entry_speed_m_s_, merge.exit_max_m_s,
                                                   node.limits.max_acceleration_m_s2, node.limits.max_jerk_m_s3);
   Release release;
   release.limits = node.limits;
@@ -126,9 +139,82 @@ void Planner::begin_release() {
   release.cruise_start_m = release.profile.state_at(release.cruise_start_s).s_m;
   release_ = release;
   entry_speed_m_s_ = exit;
-  window_.pop_front();
-  ++front_index_;
+  for (std::size_t k = 0; k < merge.runs; ++k) window_.pop_front();
+  front_index_ += merge.runs;
   ++statistics_.runs;
+  statistics_.joined_runs += merge.runs - 1;
+}
+
+// Once the front run's entry speed is known, the runs after it may join its profile: the
+// tangential acceleration then carries across their junctions instead of returning to zero at
+// each (on the short arcs of a blended contour that costs more than the junctions' own bounds).
+// A run joins when its junction with the profile so far is tangent, the limits stay within the
+// run bands (RunRules), the entry speed admits the joined length (braking to the new exit bound
+// with the lower limits), and at every junction inside the joined profile its speed stays below
+// the junction's bound: at a distance s from its start it is at most fastest_speed_up(s, entry)
+// and, counted back from its end, fastest_speed_up(L − s, exit); one of them below the bound
+// suffices. Each decision takes only final values, or values whose later rise cannot change it (a
+// speed-up to an exit below the bound after it keeps that exit); otherwise `waits` asks next() to
+// read on before releasing, so the streamed plan stays that of the whole program.
+Planner::Merge Planner::plan_merge() {
+  Merge merge;
+  merge.node = window_.front();
+  merge.exit_max_m_s = exit_max(0);
+  Node& node = merge.node;
+  if (node.dwell || !options_.one_profile_per_run || !options_.join_runs) return merge;
+  const RunRules& rules = options_.runs;
+  const double v0 = entry_speed_m_s_;
+  std::vector<std::pair<double, double>>& backward = backward_junctions_;
+  backward.clear();
+  std::size_t member = node.members;                 // index in members_ of the next run's first segment
+  while (merge.runs < window_.size()) {
+    const Node& next = window_[merge.runs];
+    if (next.dwell || merge.runs >= rules.max_joined_runs || node.members + next.members > rules.max_segments) break;
+    const SegmentLimits low{std::min(node.limits.max_velocity_m_s, next.limits.max_velocity_m_s),
+                            std::min(node.limits.max_acceleration_m_s2, next.limits.max_acceleration_m_s2),
+                            std::min(node.limits.max_jerk_m_s3, next.limits.max_jerk_m_s3)};
+    const double high_velocity = std::max(node.limits.max_velocity_m_s, next.limits.max_velocity_m_s);
+    const double high_acceleration = std::max(node.limits.max_acceleration_m_s2, next.limits.max_acceleration_m_s2);
+    const double high_jerk = std::max(node.limits.max_jerk_m_s3, next.limits.max_jerk_m_s3);
+    if (low.max_velocity_m_s < rules.speed_band * high_velocity ||
+        low.max_acceleration_m_s2 < rules.tangential_band * high_acceleration ||
+        low.max_jerk_m_s3 < rules.tangential_band * high_jerk || v0 > low.max_velocity_m_s) {
+      break;
+    }
+    const double a = low.max_acceleration_m_s2, j = low.max_jerk_m_s3;
+    const PathSegment& last = members_[member - 1].path;
+    const PathSegment& first = members_[member].path;
+    const double bound = tangent_junction_speed_limit(last, segment_limits(last, limits_), first,
+                                                      segment_limits(first, limits_), limits_, options_.junction, a);
+    if (!(bound > 0.0)) break;
+    const double length = node.length_m + next.length_m;
+    const double after = std::min(exit_max(merge.runs), low.max_velocity_m_s);  // the profile's own cap too
+    const bool final_after = exhausted_ || pinned_end_ > front_index_ + merge.runs + 1;
+    const bool admitted = v0 <= max_entry_speed(length, after, a, j);
+    const double exit = admitted ? max_exit_speed(length, v0, after, a, j) : 0.0;
+    if (!final_after && !(admitted && exit >= v0 && exit < after)) {
+      merge.waits = true;  // a later rise of `after` may still decide it
+      break;
+    }
+    if (!admitted) break;
+    // A junction the profile cannot reach from its entry stays so as runs join (the limits only fall);
+    // those it cannot reach only counted back from its exit are checked again with each new exit.
+    const auto below = [](double reach, double limit) { return reach * (1.0 + 1e-9) <= limit; };
+    const bool forward = below(fastest_speed_up(node.length_m, v0, a, j), bound);
+    if (!forward) backward.emplace_back(node.length_m, bound);
+    if (!std::all_of(backward.begin(), backward.end(), [&](const auto& k) {
+          return below(std::min(fastest_speed_up(k.first, v0, a, j), fastest_speed_up(length - k.first, exit, a, j)), k.second);
+        })) {
+      break;
+    }
+    node.members += next.members;
+    node.length_m = length;
+    node.limits = low;
+    merge.exit_max_m_s = after;
+    member += next.members;
+    ++merge.runs;
+  }
+  return merge;
 }
 
 // The next segment of the run being released: its share of the run's profile, from where the
@@ -165,10 +251,21 @@ PlannedSegment Planner::emit() {
   return planned;
 }
 
+// Whether the front run, releasable now, should wait for more of the program to decide which runs
+// join it (plan_merge). Asked again only once another junction is pinned or the program ended.
+bool Planner::merge_waits() {
+  if (exhausted_) return false;
+  if (waiting_front_ == front_index_ + 1 && waiting_pinned_ == pinned_end_) return true;
+  if (!plan_merge().waits) return false;
+  waiting_front_ = front_index_ + 1;
+  waiting_pinned_ = pinned_end_;
+  return true;
+}
+
 std::optional<PlannedSegment> Planner::next() {
   for (;;) {
     if (release_) return emit();
-    if (!window_.empty() && (exhausted_ || pinned_end_ > front_index_ + 1)) {
+    if (!window_.empty() && (exhausted_ || pinned_end_ > front_index_ + 1) && !merge_waits()) {
       begin_release();
       continue;
     }

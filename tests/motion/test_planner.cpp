@@ -69,6 +69,7 @@ struct ReferenceRun {
   SegmentLimits limits;
   bool dwell = false;
   std::size_t segments = 0;
+  PathSegment first, last;  // its first and last segment
 };
 
 std::vector<ReferenceRun> reference_runs(const std::string& gcode, const PlanOptions& options) {
@@ -86,6 +87,7 @@ std::vector<ReferenceRun> reference_runs(const std::string& gcode, const PlanOpt
     if (open && extend_run(*open, previous, previous_limits, *s, lim, options.limits, options.planner.junction,
                            options.planner.runs)) {
       ++runs.back().segments;
+      runs.back().last = *s;
     } else {
       if (open) {
         runs.back().length_m = open->length_m;
@@ -96,7 +98,7 @@ std::vector<ReferenceRun> reference_runs(const std::string& gcode, const PlanOpt
       const double junction = runs.empty() ? 0.0
                                            : junction_speed_limit(previous, previous_limits, *s, lim, options.limits,
                                                                   options.planner.junction);
-      runs.push_back({0.0, junction, lim, s->kind == SegmentKind::dwell, 1});
+      runs.push_back({0.0, junction, lim, s->kind == SegmentKind::dwell, 1, *s, *s});
       open = start_run(*s, lim, options.planner.runs);
     }
     previous = *s;
@@ -110,7 +112,17 @@ std::vector<ReferenceRun> reference_runs(const std::string& gcode, const PlanOpt
   return runs;
 }
 
-std::vector<double> reference_junction_speeds(const std::vector<ReferenceRun>& runs) {
+// Runs that share one profile, with its entry and exit speed.
+struct ReferenceProfile {
+  std::size_t runs = 0;
+  double entry_m_s = 0.0, exit_m_s = 0.0;
+};
+
+// A full backward pass, then a forward pass in which, once a profile's entry is known, the runs
+// after it join it while their junction is tangent, the limits stay within the run bands, the
+// entry admits the joined length, and the profile cannot reach any junction's bound (from the entry
+// forward or from the exit back).
+std::vector<ReferenceProfile> reference_profiles(const std::vector<ReferenceRun>& runs, const PlanOptions& options) {
   const std::size_t n = runs.size();
   std::vector<double> entry_max(n + 1, 0.0);  // entry_max[n]: the end of the program, at rest
   for (std::size_t i = n; i-- > 0;) {
@@ -119,19 +131,63 @@ std::vector<double> reference_junction_speeds(const std::vector<ReferenceRun>& r
         runs[i].dwell ? 0.0 : max_entry_speed(runs[i].length_m, entry_max[i + 1], l.max_acceleration_m_s2, l.max_jerk_m_s3);
     entry_max[i] = std::min(runs[i].entry_limit_m_s, braking);
   }
-  std::vector<double> speed(n + 1, 0.0);
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto& l = runs[i].limits;
-    speed[i + 1] = runs[i].dwell ? 0.0
-                                 : max_exit_speed(runs[i].length_m, speed[i], entry_max[i + 1], l.max_acceleration_m_s2,
-                                                  l.max_jerk_m_s3);
+  const RunRules& rules = options.planner.runs;
+  std::vector<ReferenceProfile> profiles;
+  double v0 = 0.0;
+  for (std::size_t i = 0; i < n;) {
+    double length = runs[i].length_m;
+    SegmentLimits low = runs[i].limits;
+    std::size_t segments = runs[i].segments, k = i + 1;
+    std::vector<std::pair<double, double>> junctions;
+    double exit_bound = entry_max[i + 1];
+    while (!runs[i].dwell && options.planner.one_profile_per_run && options.planner.join_runs && k < n && !runs[k].dwell &&
+           k - i < rules.max_joined_runs && segments + runs[k].segments <= rules.max_segments) {
+      const SegmentLimits& l = runs[k].limits;
+      const SegmentLimits joined{std::min(low.max_velocity_m_s, l.max_velocity_m_s),
+                                 std::min(low.max_acceleration_m_s2, l.max_acceleration_m_s2),
+                                 std::min(low.max_jerk_m_s3, l.max_jerk_m_s3)};
+      if (joined.max_velocity_m_s < rules.speed_band * std::max(low.max_velocity_m_s, l.max_velocity_m_s) ||
+          joined.max_acceleration_m_s2 < rules.tangential_band * std::max(low.max_acceleration_m_s2, l.max_acceleration_m_s2) ||
+          joined.max_jerk_m_s3 < rules.tangential_band * std::max(low.max_jerk_m_s3, l.max_jerk_m_s3) ||
+          v0 > joined.max_velocity_m_s) {
+        break;
+      }
+      const double a = joined.max_acceleration_m_s2, j = joined.max_jerk_m_s3;
+      const PathSegment& last = runs[k - 1].last;
+      const PathSegment& first = runs[k].first;
+      const double bound = tangent_junction_speed_limit(last, segment_limits(last, options.limits), first,
+                                                        segment_limits(first, options.limits), options.limits,
+                                                        options.planner.junction, a);
+      if (!(bound > 0.0)) break;
+      const double joined_length = length + runs[k].length_m;
+      const double after = std::min(entry_max[k + 1], joined.max_velocity_m_s);
+      if (v0 > max_entry_speed(joined_length, after, a, j)) break;
+      const double exit = max_exit_speed(joined_length, v0, after, a, j);
+      junctions.emplace_back(length, bound);
+      bool below = true;
+      for (const auto& [at, limit] : junctions) {
+        below = below && std::min(fastest_speed_up(at, v0, a, j), fastest_speed_up(joined_length - at, exit, a, j)) *
+                                 (1.0 + 1e-9) <= limit;
+      }
+      if (!below) break;
+      length = joined_length;
+      low = joined;
+      exit_bound = after;
+      segments += runs[k].segments;
+      ++k;
+    }
+    const double exit = runs[i].dwell ? 0.0
+                                      : max_exit_speed(length, v0, exit_bound, low.max_acceleration_m_s2, low.max_jerk_m_s3);
+    profiles.push_back({k - i, v0, exit});
+    v0 = exit;
+    i = k;
   }
-  return speed;
+  return profiles;
 }
 
 TEST(PlannerRandom, StreamedPlanEqualsWholeProgramLookAhead) {
   std::mt19937_64 rng(5);
-  std::size_t joined = 0;
+  std::size_t joined = 0, joined_runs = 0;
   for (int p = 0; p < std::max(4, test::random_cases(400) / 20); ++p) {
     const std::string gcode = test::random_program(rng, 80);
     for (const bool runs : {true, false}) {
@@ -140,20 +196,29 @@ TEST(PlannerRandom, StreamedPlanEqualsWholeProgramLookAhead) {
       if (!runs) options.planner.runs.max_segments = 1;  // the reference groups by the same rules
       const Trajectory trajectory = plan_text(gcode, options);
       const std::vector<ReferenceRun> reference_runs_of_program = reference_runs(gcode, options);
-      const std::vector<double> reference = reference_junction_speeds(reference_runs_of_program);
-      ASSERT_EQ(reference.size(), reference_runs_of_program.size() + 1);
-      std::size_t segment = 0;
-      for (std::size_t r = 0; r < reference_runs_of_program.size(); ++r) {
+      const std::vector<ReferenceProfile> reference = reference_profiles(reference_runs_of_program, options);
+      std::size_t segment = 0, run = 0;
+      for (std::size_t r = 0; r < reference.size(); ++r) {
         ASSERT_LT(segment, trajectory.segments().size());
-        ASSERT_EQ(trajectory.segments()[segment].entry_speed_m_s, reference[r]) << "program " << p << " run " << r;
-        segment += reference_runs_of_program[r].segments;
-        ASSERT_EQ(trajectory.segments()[segment - 1].exit_speed_m_s, reference[r + 1]) << "program " << p << " run " << r;
-        joined += runs ? reference_runs_of_program[r].segments - 1 : 0;
+        ASSERT_EQ(trajectory.segments()[segment].entry_speed_m_s, reference[r].entry_m_s) << "program " << p << " profile " << r;
+        std::size_t segments = 0;
+        for (std::size_t k = 0; k < reference[r].runs; ++k) segments += reference_runs_of_program[run + k].segments;
+        // One profile: every segment of it carries the same profile, and the next one starts anew.
+        for (std::size_t k = 1; k < segments; ++k) {
+          ASSERT_EQ(trajectory.segments()[segment + k].profile.duration_s, trajectory.segments()[segment].profile.duration_s);
+        }
+        segment += segments;
+        ASSERT_EQ(trajectory.segments()[segment - 1].exit_speed_m_s, reference[r].exit_m_s) << "program " << p << " profile " << r;
+        joined += runs ? segments - 1 : 0;
+        joined_runs += reference[r].runs - 1;
+        run += reference[r].runs;
       }
+      ASSERT_EQ(run, reference_runs_of_program.size());
       ASSERT_EQ(segment, trajectory.segments().size());
     }
   }
-  EXPECT_GT(joined, 0u);  // the random programs do have tangent runs
+  EXPECT_GT(joined, 0u);       // the random programs do have tangent runs
+  EXPECT_GT(joined_runs, 0u);  // … and runs that join the profile before them
 }
 
 TEST(PlannerRandom, BoundedWindowStaysFeasibleAndIsNeverFaster) {

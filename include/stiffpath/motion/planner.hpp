@@ -4,6 +4,8 @@
 #include <cstddef>
 #include <deque>
 #include <optional>
+#include <utility>
+#include <vector>
 
 #include "stiffpath/motion/junction.hpp"
 #include "stiffpath/motion/limits.hpp"
@@ -27,6 +29,11 @@ struct PlannerOptions {
   //! their feed. false: one profile per segment, starting and ending at zero acceleration.
   bool one_profile_per_run = true;
   RunRules runs;  //!< which tangent segments share a profile
+  //! Once a run's entry speed is known, let the runs after it join its profile where it cannot
+  //! reach the bounds of the junctions between them (Planner::plan_merge): blended contours then
+  //! speed up and slow down through the curvature steps of their fillets without stopping their
+  //! acceleration at each. false: each run keeps its own profile.
+  bool join_runs = true;
 };
 
 //! Counters of a planning run.
@@ -39,6 +46,7 @@ struct PlannerStatistics {
   //! are; on CAM programs it is 0.5 to 3 per segment.
   std::size_t entry_evaluations = 0;
   std::size_t runs = 0;              //!< profiles solved (a run of tangent segments has one)
+  std::size_t joined_runs = 0;       //!< runs that joined the profile of the run before them on release
 };
 
 //! Plans the segments of a PathSource with look-ahead over the whole program and hands them out
@@ -46,10 +54,13 @@ struct PlannerStatistics {
 //! runs (planner_run.hpp) that get one profile each. Each junction between runs gets the highest
 //! speed that (1) its junction rules allow, (2) the rest of the program can still brake from
 //! (backward pass, with every run starting and ending at zero tangential acceleration), and (3)
-//! can be reached from the start (forward pass). A run is released as soon as a later junction is
-//! pinned, i.e. its speed is set by its own rules rather than by what follows: from then on nothing
-//! later in the program can change it, so the streamed result equals planning the whole program at
-//! once. The program starts and ends at rest. A profile that cannot be built is an internal error
+//! can be reached from the start (forward pass). On release, once its entry speed is known, the
+//! runs after a run may join its profile where it provably stays below the bounds of the junctions
+//! between them (plan_merge), so that the acceleration carries across them. A run is released as
+//! soon as a later junction is pinned, i.e. its speed is set by its own rules rather than by what
+//! follows (and, when the joining depends on what follows, once that is pinned too): from then on
+//! nothing later in the program can change it, so the streamed result equals planning the whole
+//! program at once. The program starts and ends at rest. A profile that cannot be built is an internal error
 //! (std::logic_error); invalid limits throw stiffpath::Error.
 class Planner final : public SegmentSource {
  public:
@@ -85,7 +96,15 @@ class Planner final : public SegmentSource {
   void add(const PathSegment& segment);
   void close_run();
   void backward_pass();
+  struct Merge {  // the runs that join the front run's profile (plan_merge)
+    std::size_t runs = 1;       // window runs in the profile, the front one included
+    Node node;                  // the joined run
+    double exit_max_m_s = 0.0;  // the bound on its exit
+    bool waits = false;         // more of the program may let another run join
+  };
   void begin_release();
+  [[nodiscard]] Merge plan_merge();
+  bool merge_waits();
   PlannedSegment emit();
   [[nodiscard]] double exit_max(std::size_t i) const noexcept;
   [[nodiscard]] double entry_bound(const Node& node, double exit_max_m_s) const noexcept;
@@ -107,6 +126,9 @@ class Planner final : public SegmentSource {
   double clock_s_ = 0.0;
   std::size_t pending_ = 0;       // runs pushed since the last backward pass (at the window's end)
   std::size_t pass_depth_ = 0;    // earlier runs the last backward pass changed
+  std::vector<std::pair<double, double>> backward_junctions_;  // plan_merge's (distance, bound) to check again
+  std::size_t waiting_front_ = 0;   // 1 + front_index_ and pinned_end_ when merge_waits() last said wait
+  std::size_t waiting_pinned_ = 0;
   bool started_ = false;          // a segment has been read
   bool exhausted_ = false;
   PlannerStatistics statistics_;

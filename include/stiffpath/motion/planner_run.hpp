@@ -22,6 +22,9 @@ struct RunRules {
   double tangential_band = 0.5;
   //! A run closes after this many segments (it is held in memory until its profile is solved).
   std::size_t max_segments = 1024;
+  //! At most this many runs share one profile when they join on release (Planner): bounds the work
+  //! of checking its junctions (at most max_joined_runs² speed bounds per profile).
+  std::size_t max_joined_runs = 64;
   //! A run also closes once it is this many times as long as a speed change from rest to its cap:
   //! its junction with the next run can then be passed at the cap, so closing it costs no time.
   double closing_length_factor = 4.0;
