@@ -55,6 +55,7 @@ void Planner::close_run() {
   node.members = run.segments;
   node.length_m = run.length_m;
   node.limits = run.low;
+  node.high = run.high;
   node.dwell = run.dwell;
   node.dwell_s = run.dwell ? members_.back().path.dwell_s : 0.0;
   node.line = members_[members_.size() - run.segments].path.line;
@@ -170,17 +171,9 @@ Planner::Merge Planner::plan_merge() {
   while (merge.runs < window_.size()) {
     const Node& next = window_[merge.runs];
     if (next.dwell || merge.runs >= rules.max_joined_runs || node.members + next.members > rules.max_segments) break;
-    const SegmentLimits low{std::min(node.limits.max_velocity_m_s, next.limits.max_velocity_m_s),
-                            std::min(node.limits.max_acceleration_m_s2, next.limits.max_acceleration_m_s2),
-                            std::min(node.limits.max_jerk_m_s3, next.limits.max_jerk_m_s3)};
-    const double high_velocity = std::max(node.limits.max_velocity_m_s, next.limits.max_velocity_m_s);
-    const double high_acceleration = std::max(node.limits.max_acceleration_m_s2, next.limits.max_acceleration_m_s2);
-    const double high_jerk = std::max(node.limits.max_jerk_m_s3, next.limits.max_jerk_m_s3);
-    if (low.max_velocity_m_s < rules.speed_band * high_velocity ||
-        low.max_acceleration_m_s2 < rules.tangential_band * high_acceleration ||
-        low.max_jerk_m_s3 < rules.tangential_band * high_jerk || v0 > low.max_velocity_m_s) {
-      break;
-    }
+    // The bands hold over all the joined segments, as within one run.
+    const SegmentLimits low = lower_limits(node.limits, next.limits), high = higher_limits(node.high, next.high);
+    if (!within_run_bands(low, high, rules) || v0 > low.max_velocity_m_s) break;
     const double a = low.max_acceleration_m_s2, j = low.max_jerk_m_s3;
     const PathSegment& last = members_[member - 1].path;
     const PathSegment& first = members_[member].path;
@@ -210,6 +203,7 @@ Planner::Merge Planner::plan_merge() {
     node.members += next.members;
     node.length_m = length;
     node.limits = low;
+    node.high = high;
     merge.exit_max_m_s = after;
     member += next.members;
     ++merge.runs;

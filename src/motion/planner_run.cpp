@@ -17,6 +17,22 @@ double closing_length(const SegmentLimits& low, const RunRules& rules) noexcept 
 
 }  // namespace
 
+SegmentLimits lower_limits(const SegmentLimits& a, const SegmentLimits& b) noexcept {
+  return {std::min(a.max_velocity_m_s, b.max_velocity_m_s), std::min(a.max_acceleration_m_s2, b.max_acceleration_m_s2),
+          std::min(a.max_jerk_m_s3, b.max_jerk_m_s3)};
+}
+
+SegmentLimits higher_limits(const SegmentLimits& a, const SegmentLimits& b) noexcept {
+  return {std::max(a.max_velocity_m_s, b.max_velocity_m_s), std::max(a.max_acceleration_m_s2, b.max_acceleration_m_s2),
+          std::max(a.max_jerk_m_s3, b.max_jerk_m_s3)};
+}
+
+bool within_run_bands(const SegmentLimits& low, const SegmentLimits& high, const RunRules& rules) noexcept {
+  return low.max_velocity_m_s >= rules.speed_band * high.max_velocity_m_s &&
+         low.max_acceleration_m_s2 >= rules.tangential_band * high.max_acceleration_m_s2 &&
+         low.max_jerk_m_s3 >= rules.tangential_band * high.max_jerk_m_s3;
+}
+
 Run start_run(const PathSegment& segment, const SegmentLimits& limits, const RunRules& rules) noexcept {
   return Run{limits, limits, segment.length_m, 1, segment.kind == SegmentKind::dwell, closing_length(limits, rules)};
 }
@@ -34,17 +50,8 @@ bool extend_run(Run& run, const PathSegment& last, const SegmentLimits& last_lim
   if (!(junction_speed > 0.0)) return false;
   const SegmentLimits joining{std::min(next_limits.max_velocity_m_s, junction_speed), next_limits.max_acceleration_m_s2,
                               next_limits.max_jerk_m_s3};
-  const SegmentLimits low{std::min(run.low.max_velocity_m_s, joining.max_velocity_m_s),
-                          std::min(run.low.max_acceleration_m_s2, joining.max_acceleration_m_s2),
-                          std::min(run.low.max_jerk_m_s3, joining.max_jerk_m_s3)};
-  const SegmentLimits high{std::max(run.high.max_velocity_m_s, joining.max_velocity_m_s),
-                           std::max(run.high.max_acceleration_m_s2, joining.max_acceleration_m_s2),
-                           std::max(run.high.max_jerk_m_s3, joining.max_jerk_m_s3)};
-  if (low.max_velocity_m_s < rules.speed_band * high.max_velocity_m_s ||
-      low.max_acceleration_m_s2 < rules.tangential_band * high.max_acceleration_m_s2 ||
-      low.max_jerk_m_s3 < rules.tangential_band * high.max_jerk_m_s3) {
-    return false;
-  }
+  const SegmentLimits low = lower_limits(run.low, joining), high = higher_limits(run.high, joining);
+  if (!within_run_bands(low, high, rules)) return false;
   if (low.max_velocity_m_s != run.low.max_velocity_m_s || low.max_acceleration_m_s2 != run.low.max_acceleration_m_s2 ||
       low.max_jerk_m_s3 != run.low.max_jerk_m_s3) {
     run.closing_length_m = closing_length(low, rules);

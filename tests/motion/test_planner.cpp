@@ -66,7 +66,7 @@ TEST(PlannerRandom, ExactStopProgramsPassEveryProgrammedPointAndEndAtRest) {
 // backward pass, a forward pass) on the same segments, gathered into runs by the same rule.
 struct ReferenceRun {
   double length_m = 0.0, entry_limit_m_s = 0.0;
-  SegmentLimits limits;
+  SegmentLimits limits, high;  // the lowest and the highest of its segments' limits
   bool dwell = false;
   std::size_t segments = 0;
   PathSegment first, last;  // its first and last segment
@@ -92,13 +92,14 @@ std::vector<ReferenceRun> reference_runs(const std::string& gcode, const PlanOpt
       if (open) {
         runs.back().length_m = open->length_m;
         runs.back().limits = open->low;
+        runs.back().high = open->high;
         runs.back().entry_limit_m_s = std::min({runs.back().entry_limit_m_s, open->low.max_velocity_m_s, previous_cap});
         previous_cap = runs.back().dwell ? 0.0 : open->low.max_velocity_m_s;
       }
       const double junction = runs.empty() ? 0.0
                                            : junction_speed_limit(previous, previous_limits, *s, lim, options.limits,
                                                                   options.planner.junction);
-      runs.push_back({0.0, junction, lim, s->kind == SegmentKind::dwell, 1, *s, *s});
+      runs.push_back({0.0, junction, lim, lim, s->kind == SegmentKind::dwell, 1, *s, *s});
       open = start_run(*s, lim, options.planner.runs);
     }
     previous = *s;
@@ -107,6 +108,7 @@ std::vector<ReferenceRun> reference_runs(const std::string& gcode, const PlanOpt
   if (open) {
     runs.back().length_m = open->length_m;
     runs.back().limits = open->low;
+    runs.back().high = open->high;
     runs.back().entry_limit_m_s = std::min({runs.back().entry_limit_m_s, open->low.max_velocity_m_s, previous_cap});
   }
   return runs;
@@ -136,22 +138,14 @@ std::vector<ReferenceProfile> reference_profiles(const std::vector<ReferenceRun>
   double v0 = 0.0;
   for (std::size_t i = 0; i < n;) {
     double length = runs[i].length_m;
-    SegmentLimits low = runs[i].limits;
+    SegmentLimits low = runs[i].limits, high = runs[i].high;
     std::size_t segments = runs[i].segments, k = i + 1;
     std::vector<std::pair<double, double>> junctions;
     double exit_bound = entry_max[i + 1];
     while (!runs[i].dwell && options.planner.one_profile_per_run && options.planner.join_runs && k < n && !runs[k].dwell &&
            k - i < rules.max_joined_runs && segments + runs[k].segments <= rules.max_segments) {
-      const SegmentLimits& l = runs[k].limits;
-      const SegmentLimits joined{std::min(low.max_velocity_m_s, l.max_velocity_m_s),
-                                 std::min(low.max_acceleration_m_s2, l.max_acceleration_m_s2),
-                                 std::min(low.max_jerk_m_s3, l.max_jerk_m_s3)};
-      if (joined.max_velocity_m_s < rules.speed_band * std::max(low.max_velocity_m_s, l.max_velocity_m_s) ||
-          joined.max_acceleration_m_s2 < rules.tangential_band * std::max(low.max_acceleration_m_s2, l.max_acceleration_m_s2) ||
-          joined.max_jerk_m_s3 < rules.tangential_band * std::max(low.max_jerk_m_s3, l.max_jerk_m_s3) ||
-          v0 > joined.max_velocity_m_s) {
-        break;
-      }
+      const SegmentLimits joined = lower_limits(low, runs[k].limits), joined_high = higher_limits(high, runs[k].high);
+      if (!within_run_bands(joined, joined_high, rules) || v0 > joined.max_velocity_m_s) break;
       const double a = joined.max_acceleration_m_s2, j = joined.max_jerk_m_s3;
       const PathSegment& last = runs[k - 1].last;
       const PathSegment& first = runs[k].first;
@@ -172,6 +166,7 @@ std::vector<ReferenceProfile> reference_profiles(const std::vector<ReferenceRun>
       if (!below) break;
       length = joined_length;
       low = joined;
+      high = joined_high;
       exit_bound = after;
       segments += runs[k].segments;
       ++k;

@@ -76,7 +76,8 @@ class Planner final : public SegmentSource {
   struct Node {  // a closed run: one profile
     std::size_t members = 0;   // its segments, in order at the front of members_ once it is the front node
     double length_m = 0.0;
-    SegmentLimits limits;
+    SegmentLimits limits;      // the lowest of its segments' limits: its profile's
+    SegmentLimits high;        // the highest (RunRules bands)
     bool dwell = false;
     double dwell_s = 0.0;
     int line = 0;              // source line of its first segment

@@ -40,6 +40,15 @@ struct Run {
   double closing_length_m = 0.0;  //!< RunRules::closing_length_factor × the change from rest to low's cap
 };
 
+//! The lower, and the higher, of each limit of two sets.
+SegmentLimits lower_limits(const SegmentLimits& a, const SegmentLimits& b) noexcept;
+SegmentLimits higher_limits(const SegmentLimits& a, const SegmentLimits& b) noexcept;
+
+//! Whether segments whose lowest limits are `low` and highest `high` may share a profile (planned
+//! with `low`): the speed caps within RunRules::speed_band, the tangential limits within
+//! RunRules::tangential_band.
+bool within_run_bands(const SegmentLimits& low, const SegmentLimits& high, const RunRules& rules) noexcept;
+
 //! A run of one segment.
 Run start_run(const PathSegment& segment, const SegmentLimits& limits, const RunRules& rules = {}) noexcept;
 
