@@ -106,8 +106,7 @@ void Planner::backward_pass() {
 
 // Forward pass for the front run: its exit is what the backward pass allows and what can be reached
 // from its entry. Solves its profile; its segments are then handed out by emit().
-void Planner::begin_release() {
-  const Merge merge = plan_merge();
+void Planner::begin_release(const Merge& merge) {
   const Node& node = merge.node;
   // The joined runs' segments continue the front run's arc length.
   double offset_m = window_.front().length_m;
@@ -245,23 +244,21 @@ PlannedSegment Planner::emit() {
   return planned;
 }
 
-// Whether the front run, releasable now, should wait for more of the program to decide which runs
-// join it (plan_merge). Asked again only once another junction is pinned or the program ended.
-bool Planner::merge_waits() {
-  if (exhausted_) return false;
-  if (waiting_front_ == front_index_ + 1 && waiting_pinned_ == pinned_end_) return true;
-  if (!plan_merge().waits) return false;
-  waiting_front_ = front_index_ + 1;
-  waiting_pinned_ = pinned_end_;
-  return true;
-}
-
 std::optional<PlannedSegment> Planner::next() {
   for (;;) {
     if (release_) return emit();
-    if (!window_.empty() && (exhausted_ || pinned_end_ > front_index_ + 1) && !merge_waits()) {
-      begin_release();
-      continue;
+    // The front run is releasable once the junction after it is final; it waits on while the runs
+    // that may join it (plan_merge) need more of the program, asked again once another junction is
+    // pinned (a finished program decides everything).
+    const bool asked = !exhausted_ && waiting_front_ == front_index_ + 1 && waiting_pinned_ == pinned_end_;
+    if (!window_.empty() && (exhausted_ || pinned_end_ > front_index_ + 1) && !asked) {
+      const Merge merge = plan_merge();
+      if (!merge.waits) {
+        begin_release(merge);
+        continue;
+      }
+      waiting_front_ = front_index_ + 1;
+      waiting_pinned_ = pinned_end_;
     }
     if (exhausted_) return std::nullopt;
     if (options_.max_lookahead_segments > 0 && members_.size() >= std::max<std::size_t>(options_.max_lookahead_segments, 2)) {
@@ -271,7 +268,7 @@ std::optional<PlannedSegment> Planner::next() {
         continue;
       }
       statistics_.forced_releases += window_.front().members;
-      begin_release();
+      begin_release(plan_merge());
       continue;
     }
     std::optional<PathSegment> segment = source_.next();

@@ -103,9 +103,8 @@ class Planner final : public SegmentSource {
     double exit_max_m_s = 0.0;  // the bound on its exit
     bool waits = false;         // more of the program may let another run join
   };
-  void begin_release();
+  void begin_release(const Merge& merge);
   [[nodiscard]] Merge plan_merge();
-  bool merge_waits();
   PlannedSegment emit();
   [[nodiscard]] double exit_max(std::size_t i) const noexcept;
   [[nodiscard]] double entry_bound(const Node& node, double exit_max_m_s) const noexcept;
@@ -128,7 +127,7 @@ class Planner final : public SegmentSource {
   std::size_t pending_ = 0;       // runs pushed since the last backward pass (at the window's end)
   std::size_t pass_depth_ = 0;    // earlier runs the last backward pass changed
   std::vector<std::pair<double, double>> backward_junctions_;  // plan_merge's (distance, bound) to check again
-  std::size_t waiting_front_ = 0;   // 1 + front_index_ and pinned_end_ when merge_waits() last said wait
+  std::size_t waiting_front_ = 0;   // 1 + front_index_ and pinned_end_ when plan_merge() last said wait
   std::size_t waiting_pinned_ = 0;
   bool started_ = false;          // a segment has been read
   bool exhausted_ = false;
