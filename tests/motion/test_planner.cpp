@@ -199,8 +199,10 @@ TEST(PlannerRandom, StreamedPlanEqualsWholeProgramLookAhead) {
         std::size_t segments = 0;
         for (std::size_t k = 0; k < reference[r].runs; ++k) segments += reference_runs_of_program[run + k].segments;
         // One profile: every segment of it carries the same profile, and the next one starts anew.
+        ASSERT_EQ(trajectory.segments()[segment].profile_offset_s, 0.0);
         for (std::size_t k = 1; k < segments; ++k) {
           ASSERT_EQ(trajectory.segments()[segment + k].profile.duration_s, trajectory.segments()[segment].profile.duration_s);
+          ASSERT_GT(trajectory.segments()[segment + k].profile_offset_s, 0.0);
         }
         segment += segments;
         ASSERT_EQ(trajectory.segments()[segment - 1].exit_speed_m_s, reference[r].exit_m_s) << "program " << p << " profile " << r;

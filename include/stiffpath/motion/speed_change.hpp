@@ -44,8 +44,8 @@ double max_exit_speed(double length_m, double entry_m_s, double exit_max_m_s, do
 //! planner that starts at v0 with zero acceleration is faster at that distance: along a speed-up
 //! the acceleration at each speed is at most the fastest one's (a² ≤ 2·j·(v − v0), a ≤ a_max), so
 //! each speed is reached no sooner in distance, and after the peak the speed only falls. By time
-//! reversal the same bound holds counted back from the profile's end at its exit speed. Rounded
-//! up (the time is solved from above).
+//! reversal the same bound holds counted back from the profile's end at its exit speed. Within
+//! the jerk ramp the time is solved from above, so the bound rounds up there; past it, a closed form.
 double fastest_speed_up(double distance_m, double v0_m_s, double max_acceleration_m_s2, double max_jerk_m_s3) noexcept;
 
 }  // namespace stiffpath::motion
