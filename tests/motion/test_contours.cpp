@@ -235,7 +235,7 @@ TEST(Contours, GearOutlineReachesItsFeedOnTheTipLands) {
   test::expect_continuous_junctions(trajectory, MotionLimits{});
   expect_sampled_within_limits(trajectory);
 
-  // Measured: the smooth curve allows the feed on 185 mm of its 377 mm (126 mm on the tip lands);
+  // Measured: the smooth curve allows the feed on 185 mm of the planned 376 mm (79 mm on the tip lands);
   // the plan holds 180 mm/s or more on all of the tip lands and on 87 % of the 185 mm. The rest lies
   // on the flanks next to the root and tip fillets, where the junctions between fillet arcs and the
   // short lines left between them step the curvature (the junction rule bounds v²·Δκ): the plan
