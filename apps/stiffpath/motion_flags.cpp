@@ -58,6 +58,10 @@ void add_motion_flags(CLI::App* cmd, MotionFlags& a) {
       ->expected(2);
   cmd->add_option("--blend-tolerance-mm", a.blend_tolerance_mm, "Corner tolerance of a G64 without P (mm)")
       ->capture_default_str();
+  cmd->add_option("--chords", a.chords,
+                  "G64 chains of short lines: blend (a fillet at each vertex) or fit (one smooth curve within P)")
+      ->check(CLI::IsMember({"blend", "fit"}))
+      ->capture_default_str();
   cmd->add_option("--junction-time-ms", a.junction_time_ms, "Junction time: steps of v and a allowed at joins (ms)")
       ->capture_default_str();
   cmd->add_option("--lookahead", a.lookahead, "Look-ahead bound in segments (0: whole program)")->capture_default_str();
@@ -108,6 +112,7 @@ motion::PlanOptions plan_options(const MotionFlags& a, const kinematics::Robot& 
   o.gcode.default_blend_tolerance_m = units::mm_to_m(a.blend_tolerance_mm);
   check("--junction-time-ms", a.junction_time_ms, 0.0, 1000.0, "ms");
   o.planner.junction.junction_time_s = a.junction_time_ms * 1e-3;
+  o.planner.junction.fit_chords = a.chords == "fit";
   o.planner.max_lookahead_segments = a.lookahead;
   o.gcode.strict = a.strict;
   o.gcode.dwell_p_units = a.dwell_p_units == "ms" ? motion::DwellUnits::milliseconds : motion::DwellUnits::seconds;

@@ -21,6 +21,7 @@ struct MotionFlags {
   std::vector<double> work_offset_mm;
   std::vector<double> start_mm;
   double blend_tolerance_mm = 0.01;
+  std::string chords = "blend";  // G64 chains of short lines: blend (a fillet each) or fit
   double junction_time_ms = 0.5;
   std::size_t lookahead = 0;
   bool strict = false;
@@ -31,7 +32,7 @@ struct MotionFlags {
 };
 
 //! Registers --accel, --jerk, --max-velocity-mm-s, --rate, --work-offset-mm, --start-mm,
-//! --blend-tolerance-mm, --junction-time-ms, --lookahead and the dialect flags --strict,
+//! --blend-tolerance-mm, --chords, --junction-time-ms, --lookahead and the dialect flags --strict,
 //! --dwell-p-units, --s-max, --program-stop and --block-delete on `cmd`.
 void add_motion_flags(CLI::App* cmd, MotionFlags& flags);
 //! The planner's options from the flags. Every number is checked against its documented range

@@ -57,8 +57,9 @@ std::optional<PathSegment> arc_absorbing_line(const Vec2& line_start_m, const Ve
   return make_arc(line_start_m, fillet.exit_m, center, sweep);
 }
 
-CornerBlender::CornerBlender(PathSource& source, double corner_angle_rad)
-    : source_(source), corner_angle_rad_(corner_angle_rad), corner_chord_(2.0 * std::sin(0.5 * corner_angle_rad)) {}
+CornerBlender::CornerBlender(PathSource& source, double corner_angle_rad, bool fit_chords)
+    : fitter_(fit_chords ? std::make_unique<ChordFitter>(source) : nullptr),
+      source_(fitter_ ? *fitter_ : source), corner_angle_rad_(corner_angle_rad), corner_chord_(2.0 * std::sin(0.5 * corner_angle_rad)) {}
 
 std::optional<PathSegment> CornerBlender::next() {
   while (ready_.empty()) {

@@ -5,13 +5,15 @@ namespace stiffpath::motion {
 
 TrajectoryStream::TrajectoryStream(const std::filesystem::path& gcode, const PlanOptions& options)
     : reader_(std::make_unique<GcodeReader>(gcode, options.gcode)),
-      blender_(std::make_unique<CornerBlender>(*reader_, options.planner.junction.corner_angle_rad)),
+      blender_(std::make_unique<CornerBlender>(*reader_, options.planner.junction.corner_angle_rad,
+                                                options.planner.junction.fit_chords)),
       planner_(std::make_unique<Planner>(*blender_, options.limits, options.planner)),
       sampler_(std::make_unique<Sampler>(*planner_, options.rate_hz)) {}
 
 TrajectoryStream::TrajectoryStream(std::istream& in, std::string label, const PlanOptions& options)
     : reader_(std::make_unique<GcodeReader>(in, std::move(label), options.gcode)),
-      blender_(std::make_unique<CornerBlender>(*reader_, options.planner.junction.corner_angle_rad)),
+      blender_(std::make_unique<CornerBlender>(*reader_, options.planner.junction.corner_angle_rad,
+                                                options.planner.junction.fit_chords)),
       planner_(std::make_unique<Planner>(*blender_, options.limits, options.planner)),
       sampler_(std::make_unique<Sampler>(*planner_, options.rate_hz)) {}
 
@@ -21,12 +23,12 @@ std::optional<TrajectorySample> TrajectoryStream::next() { return sampler_->next
 
 namespace {
 Trajectory plan_from(GcodeReader& reader, const PlanOptions& options) {
-  CornerBlender blender(reader, options.planner.junction.corner_angle_rad);
+  CornerBlender blender(reader, options.planner.junction.corner_angle_rad, options.planner.junction.fit_chords);
   return Trajectory::plan(blender, options.limits, options.planner);
 }
 
 PlanSize measure(GcodeReader& reader, const PlanOptions& options) {
-  CornerBlender blender(reader, options.planner.junction.corner_angle_rad);
+  CornerBlender blender(reader, options.planner.junction.corner_angle_rad, options.planner.junction.fit_chords);
   Planner planner(blender, options.limits, options.planner);
   PlanSize size;
   while (auto segment = planner.next()) {

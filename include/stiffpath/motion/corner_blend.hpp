@@ -2,8 +2,10 @@
 #pragma once
 
 #include <deque>
+#include <memory>
 #include <optional>
 
+#include "stiffpath/motion/chord_fit.hpp"
 #include "stiffpath/motion/path_source.hpp"
 
 namespace stiffpath::motion {
@@ -39,13 +41,16 @@ std::optional<PathSegment> arc_absorbing_line(const Vec2& line_start_m, const Ve
 //! (arc_absorbing_line with a kink of at most a quarter of corner_angle_rad), so that chord-flattened
 //! curves become chains of arcs without short lines between them (a curvature step each). The fillet
 //! carries the first line's attributes with the lower of both feeds. Holds at most two segments.
+//! With `fit_chords` a ChordFitter in front first turns chains of short chords into
+//! tangent biarcs within P, so only the vertices it leaves as corners get fillets.
 class CornerBlender final : public PathSource {
  public:
-  CornerBlender(PathSource& source, double corner_angle_rad);
+  CornerBlender(PathSource& source, double corner_angle_rad, bool fit_chords = false);
   std::optional<PathSegment> next() override;
 
  private:
-  PathSource& source_;
+  std::unique_ptr<ChordFitter> fitter_;  // null without fit_chords
+  PathSource& source_;                   // the fitter, or the stage before
   double corner_angle_rad_;
   double corner_chord_;                // 2·sin(corner_angle_rad/2): |out − in| of a turn by that angle
   std::optional<PathSegment> held_;    // the last segment, whose end may still be trimmed
