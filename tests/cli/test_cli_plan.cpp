@@ -279,5 +279,23 @@ TEST(CliPlan, RunTakesTheDialectFlagsAndPrintsTheWarnings) {
   EXPECT_FALSE(fs::exists(dir / "joints.csv"));
 }
 
+TEST(CliPlan, ChordsFitRefitsTheGearsChordsAndAnUnknownChoiceIsRefused) {
+  // --chords fit turns the gear's chains of chords into biarcs (about two pieces per chord where it
+  // blends one fillet), on the same path within P: the laser-on time changes by about 1 %, not more.
+  TempDir dir;
+  const std::string gear = "plan '" + (examples / "gear_outline.gcode").string() + "' --json";
+  const CliResult blend = run_cli(gear, dir.path()), fit = run_cli(gear + " --chords fit", dir.path());
+  ASSERT_EQ(blend.exit_code, 0) << blend.err;
+  ASSERT_EQ(fit.exit_code, 0) << fit.err;
+  const auto b = blend.json(), f = fit.json();
+  EXPECT_GT(f["segments"].get<int>(), b["segments"].get<int>() * 5 / 4);
+  EXPECT_NEAR(f["laser_on_s"].get<double>(), b["laser_on_s"].get<double>(), 0.03 * b["laser_on_s"].get<double>());
+  EXPECT_LE(f["peak_acceleration_m_s2"].get<double>(), f["max_acceleration_m_s2"].get<double>() * (1 + 1e-9));
+  const CliResult bad = run_cli(gear + " --chords spline", dir.path());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--chords"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("spline"), std::string::npos) << bad.err;
+}
+
 }  // namespace
 }  // namespace stiffpath::test
