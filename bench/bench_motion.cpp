@@ -173,7 +173,7 @@ BENCHMARK(BM_EvaluateAtRandomTime);
 // one process on the same text: 0 reading and blending it (the path stages), 1 also planning it
 // (look-ahead, runs, profiles), 2 also sampling it at 2 kHz; and the whole `run` job with CSV or
 // binary output (process CPU time: the job runs on two threads). The planner's share is
-// (stage 1 − stage 0) / run.
+// (stage 1 − stage 0) / run. `join`: runs join on release; `fit`: the chords are fitted (--chords fit).
 enum class CamStage { path, plan, sample };
 
 void BM_CamProgram(benchmark::State& state) {
@@ -185,7 +185,7 @@ void BM_CamProgram(benchmark::State& state) {
   for (auto _ : state) {
     std::istringstream in(program);
     GcodeReader reader(in, "cam.gcode");
-    CornerBlender blender(reader, JunctionRules{}.corner_angle_rad);
+    CornerBlender blender(reader, JunctionRules{}.corner_angle_rad, state.range(2) != 0);
     segments = 0;
     if (stage == CamStage::path) {
       while (auto s = blender.next()) ++segments;
@@ -212,11 +212,13 @@ void BM_CamProgram(benchmark::State& state) {
 }
 // join 0: each run keeps its own profile (PlannerOptions::join_runs = false), to price the joining.
 BENCHMARK(BM_CamProgram)
-    ->ArgNames({"stage", "join"})
-    ->Args({0, 1})
-    ->Args({1, 0})
-    ->Args({1, 1})
-    ->Args({2, 1})
+    ->ArgNames({"stage", "join", "fit"})
+    ->Args({0, 1, 0})
+    ->Args({1, 0, 0})
+    ->Args({1, 1, 0})
+    ->Args({2, 1, 0})
+    ->Args({0, 1, 1})
+    ->Args({1, 1, 1})
     ->Unit(benchmark::kMillisecond);
 
 void BM_CamRunJob(benchmark::State& state, job::OutputFormat format) {
