@@ -1,10 +1,11 @@
-// Corner blending for G64: tangent fillet arcs between lines, trimming each line by at most half its length.
+// Corner blending for G64: tangent fillet arcs (or biarcs) between lines, trimming each line by at most half its length.
 #include "stiffpath/motion/corner_blend.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
+#include "stiffpath/motion/biarc.hpp"
 #include "stiffpath/motion/junction.hpp"
 
 namespace stiffpath::motion {
@@ -57,6 +58,56 @@ std::optional<PathSegment> arc_absorbing_line(const Vec2& line_start_m, const Ve
   return make_arc(line_start_m, fillet.exit_m, center, sweep);
 }
 
+namespace {
+// What two blends may leave of a line for the second one's arc to absorb it (a tenth of P).
+double absorbed_line_m(double tolerance_m) noexcept { return 0.1 * tolerance_m; }
+
+double distance_to_segment(const Vec2& p, const Vec2& a, const Vec2& b) noexcept {
+  const Vec2 ab = b - a;
+  const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  return (a + t * ab - p).norm();
+}
+}  // namespace
+
+std::optional<std::array<PathSegment, 2>> corner_biarc(const Vec2& corner_m, const Vec2& in, const Vec2& out,
+                                                       double t_in_m, double t_out_m, double tolerance_m) noexcept {
+  if (!(t_in_m > 0.0) || !(t_out_m > 0.0) || !(tolerance_m > 0.0)) return std::nullopt;
+  const Vec2 entry = corner_m - t_in_m * in, exit = corner_m + t_out_m * out;
+  const std::optional<std::array<PathSegment, 2>> pieces = biarc(entry, in, exit, out);
+  if (!pieces) return std::nullopt;
+  // The distance to the two lines, min(d_in, d_out), is smooth along each piece except where the
+  // piece crosses the corner's bisector (d_in = d_out, a ridge): that point is found by bisection
+  // and checked itself; elsewhere a distance to a line varies along an arc with |d''| ≤ κ, so between
+  // two checked points it exceeds the higher of them by at most κ·h²/8.
+  const Vec2 bisector = out - in;
+  auto deviation = [&](const Vec2& p) {
+    return std::min(distance_to_segment(p, entry, corner_m), distance_to_segment(p, corner_m, exit));
+  };
+  auto side = [&](const Vec2& p) { return (p - corner_m).x() * bisector.y() - (p - corner_m).y() * bisector.x(); };
+  constexpr int intervals = 16;
+  for (const PathSegment& piece : *pieces) {
+    const double h = piece.length_m / intervals;
+    const double curvature = piece.kind == SegmentKind::arc ? 1.0 / piece.radius_m : 0.0;
+    const double rise = curvature * h * h / 8.0;
+    double previous_side = side(piece.start_m);
+    for (int m = 0; m <= intervals; ++m) {
+      const Vec2 p = point_at(piece, h * m).position_m;
+      if (!(deviation(p) + rise <= tolerance_m)) return std::nullopt;
+      const double this_side = side(p);
+      if (m > 0 && (this_side < 0.0) != (previous_side < 0.0)) {  // the ridge lies in this interval
+        double lo = h * (m - 1), hi = h * m;
+        for (int k = 0; k < 40; ++k) {
+          const double mid = 0.5 * (lo + hi);
+          ((side(point_at(piece, mid).position_m) < 0.0) == (previous_side < 0.0) ? lo : hi) = mid;
+        }
+        if (!(deviation(point_at(piece, 0.5 * (lo + hi)).position_m) + rise <= tolerance_m)) return std::nullopt;
+      }
+      previous_side = this_side;
+    }
+  }
+  return pieces;
+}
+
 CornerBlender::CornerBlender(PathSource& source, double corner_angle_rad, bool fit_chords)
     : fitter_(fit_chords ? std::make_unique<ChordFitter>(source) : nullptr),
       source_(fitter_ ? *fitter_ : source), corner_angle_rad_(corner_angle_rad), corner_chord_(2.0 * std::sin(0.5 * corner_angle_rad)) {}
@@ -77,6 +128,7 @@ std::optional<PathSegment> CornerBlender::next() {
     if (!held_) {
       held_ = *incoming;
       held_length_m_ = incoming->length_m;
+      held_blended_ = false;
       continue;
     }
     PathSegment& a = *held_;
@@ -85,15 +137,52 @@ std::optional<PathSegment> CornerBlender::next() {
                            a.mode == JunctionMode::blend && a.laser_on == b.laser_on && a.rapid == b.rapid;
     const Vec2 in = end_tangent(a), out = start_tangent(b);
     std::optional<CornerFillet> fillet;
+    const double max_trim = 0.5 * std::min(held_length_m_, b.length_m);
     if (blendable && (out - in).norm() > corner_chord_) {  // |out − in| = 2·sin(φ/2)
-      fillet = corner_fillet(a.end_m, in, out, a.blend_tolerance_m, 0.5 * std::min(held_length_m_, b.length_m));
+      fillet = corner_fillet(a.end_m, in, out, a.blend_tolerance_m, max_trim);
     }
-    if (fillet) {
+    // Where the fillet is bounded by half the shorter line and would leave more of the first line
+    // than an absorbing arc takes: a biarc that takes all the corner before left of the first line
+    // and half of the second.
+    std::optional<std::array<PathSegment, 2>> pair;
+    if (fillet && held_blended_ && a.length_m <= 0.75 * held_length_m_ && fillet->trim_m >= max_trim * (1 - 1e-9) &&
+        a.length_m - fillet->trim_m > absorbed_line_m(a.blend_tolerance_m)) {
+      pair = corner_biarc(a.end_m, in, out, a.length_m, 0.5 * b.length_m, a.blend_tolerance_m);
+    }
+    if (pair) {
+      // What is left of the first line: kept, or (shorter than shortest_segment_m) taken into the
+      // first arc, which then starts where the line did.
+      const Vec2 entry = (*pair)[0].start_m;
+      bool keep_line = (entry - a.start_m).norm() >= shortest_segment_m;
+      if (!keep_line) {
+        if (const std::optional<PathSegment> first = arc_from_tangent(a.start_m, in, (*pair)[0].end_m)) {
+          (*pair)[0] = *first;
+        } else {
+          keep_line = true;
+        }
+      }
+      a.end_m = entry;
+      a.length_m = (a.end_m - a.start_m).norm();
+      if (keep_line) ready_.push_back(a);
+      for (PathSegment piece : *pair) {
+        piece.feed_m_s = std::min(a.feed_m_s, b.feed_m_s);
+        piece.power = a.power;
+        piece.dynamic_power = a.dynamic_power;
+        piece.blend_tolerance_m = a.blend_tolerance_m;
+        piece.line = a.line;
+        piece.rapid = a.rapid;
+        piece.laser_on = a.laser_on;
+        piece.mode = a.mode;
+        ready_.push_back(piece);
+      }
+      b.start_m = (*pair)[1].end_m;
+      b.length_m = (b.end_m - b.start_m).norm();
+    } else if (fillet) {
       a.end_m = fillet->entry_m;
       a.length_m = (a.end_m - a.start_m).norm();
       // If the two blends of a line leave (almost) nothing of it, the arc starts where the line did.
       std::optional<PathSegment> absorbing =
-          a.length_m <= 0.1 * a.blend_tolerance_m ? arc_absorbing_line(a.start_m, in, *fillet, 0.25 * corner_angle_rad_)
+          a.length_m <= absorbed_line_m(a.blend_tolerance_m) ? arc_absorbing_line(a.start_m, in, *fillet, 0.25 * corner_angle_rad_)
                                                   : std::nullopt;
       const bool keep_line = !absorbing && a.length_m >= shortest_segment_m;
       PathSegment arc = absorbing ? *absorbing
@@ -115,6 +204,7 @@ std::optional<PathSegment> CornerBlender::next() {
       ready_.push_back(a);
     }
     held_length_m_ = incoming->length_m;
+    held_blended_ = pair || fillet;
     held_ = b;
   }
   PathSegment out = ready_.front();

@@ -17,7 +17,9 @@
 // bd69b46, the last one with the thesis-only five-bar; these tests run the same commands on this build.
 // Except: the joint-file hashes of the two CAM examples (gear_outline, nameplate), whose plans changed
 // when runs began to join on release (a faster plan of the same path), were rewritten then with the
-// same commands; the thesis's own examples (triangle, x and y motion) are still bd69b46's.
+// same commands, and gear_outline's again when G64 corners between uneven chords became biarcs (a
+// faster plan of a path within the same P); the thesis's own examples (triangle, x and y motion) are
+// still bd69b46's.
 namespace stiffpath::test {
 namespace {
 

@@ -274,16 +274,17 @@ TEST(Contours, GearOutlineReachesItsFeedOnTheTipLands) {
   test::expect_continuous_junctions(trajectory, MotionLimits{});
   expect_sampled_within_limits(trajectory);
 
-  // Measured: the smooth curve allows the feed on 185 mm of the planned 376 mm (79 mm on the tip lands);
-  // the plan holds 180 mm/s or more on all of the tip lands and on 87 % of the 185 mm. The rest lies
-  // on the flanks next to the root and tip fillets, where the junctions between fillet arcs and the
-  // short lines left between them step the curvature (the junction rule bounds v²·Δκ): the plan
-  // must pass those junctions below their bounds, which the smooth curve does not have.
+  // Measured (dev build): the smooth curve allows the feed on 185 mm of the planned 376 mm (79 mm on
+  // the tip lands); the plan holds 180 mm/s or more on all of the tip lands and on 92.9 % of the
+  // 185 mm (87.3 % while the flanks' uneven chords got fillets and lines between them, not biarcs).
+  // The rest lies on the flanks next to the root and tip fillets, where the chords turn by 9-35° and
+  // the arcs' curvature steps from one corner to the next (the junction rule bounds v²·Δκ): the
+  // plan must pass those junctions below their bounds, which the smooth curve does not have.
   const GearShare share = gear_share(trajectory);
   EXPECT_GT(share.allowed, 0.150);
   EXPECT_GT(share.tip_allowed, 0.070);
   EXPECT_GE(share.tip_fast, 0.99 * share.tip_allowed);
-  EXPECT_GE(share.fast, 0.85 * share.allowed);
+  EXPECT_GE(share.fast, 0.90 * share.allowed);
 
   // The fillets that let it run keep the contour within the program's G64 P0.01 of its chords.
   EXPECT_LE(gear_deviation_m(trajectory, text), 0.01e-3 * (1 + 1e-6));
@@ -292,7 +293,7 @@ TEST(Contours, GearOutlineReachesItsFeedOnTheTipLands) {
 TEST(Contours, JoiningRunsIsWhatLiftsTheGearFlanks) {
   // Without joining, every run between two curvature steps of the flanks starts and ends at zero
   // acceleration; joined, the plan speeds up and slows down through them. Measured (dev build):
-  // 74 % and 87 % of the allowed length at ≥ 180 mm/s; the contour takes 3.77 and 3.62 s.
+  // 88.7 % and 92.9 % of the allowed length at ≥ 180 mm/s; the contour takes 3.517 and 3.456 s.
   const std::string text = gear_program();
   PlanOptions apart;
   apart.planner.join_runs = false;
@@ -300,9 +301,9 @@ TEST(Contours, JoiningRunsIsWhatLiftsTheGearFlanks) {
   test::expect_within_limits(separate, MotionLimits{});
   test::expect_continuous_junctions(separate, MotionLimits{});
   const GearShare with = gear_share(joined), without = gear_share(separate);
-  EXPECT_LT(without.fast, 0.78 * without.allowed);
-  EXPECT_GT(with.fast - without.fast, 0.10 * with.allowed);
-  EXPECT_LT(joined.duration_s(), 0.99 * separate.duration_s());
+  EXPECT_LT(without.fast, 0.90 * without.allowed);
+  EXPECT_GT(with.fast - without.fast, 0.03 * with.allowed);
+  EXPECT_LT(gear_contour_s(joined), 0.99 * gear_contour_s(separate));
 }
 
 TEST(Contours, JoinedRunsKeepEveryLimitOnRandomWavyContours) {
@@ -312,7 +313,7 @@ TEST(Contours, JoinedRunsKeepEveryLimitOnRandomWavyContours) {
   // joining never makes a contour slower.
   std::mt19937_64 rng(31);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  int faster = 0;
+  int faster = 0, fitted_faster = 0;
   const int cases = test::random_cases(40);
   for (int c = 0; c < cases; ++c) {
     const double r_mm = 3.0 + 20.0 * unit(rng), e = 0.05 + 0.3 * unit(rng), chord_mm = 0.05 + 0.25 * unit(rng);
@@ -361,18 +362,23 @@ TEST(Contours, JoinedRunsKeepEveryLimitOnRandomWavyContours) {
       }
     }
     EXPECT_LE(deviation, 0.01e-3 * (1 + 1e-6));
+    fitted_faster += fitted.duration_s() < joined.duration_s() * (1 - 1e-3);
   }
   EXPECT_GT(faster, cases / 3);
+  // These chords come from equal steps of the angle, so they differ in length; fitting them takes
+  // less time than blending them in more than half of the cases (measured: 23 of the 40, up to 32 % less; 11 take up
+  // to 9 % longer).
+  EXPECT_GT(fitted_faster, cases / 3);
 }
 
-TEST(Contours, FittedChordsHoldTheFeedOnMoreOfTheGearFlanks) {
-  // --chords fit: the flanks' chains of chords become tangent biarcs whose curvature follows the
-  // curve, so the junctions between them step the curvature by about half as much as the fillets
-  // and the lines between them do. Measured (dev build): 90.4 % of the allowed length at ≥ 180 mm/s
-  // against 87.3 % blended, within 6.0 µm of the chords against 8.6 µm (P is 10 µm); but next to
-  // the root and tip fillets, where the chords turn by 9-35° and the curvature changes fourfold from one vertex
-  // to the next, the biarcs' curvatures swing more than the fillets', and the contour takes 3.69 s
-  // against 3.62 s. Fitting buys a steadier feed on the flanks, not a shorter cycle.
+TEST(Contours, FittedChordsStayWithinLimitsAndToleranceOnTheGear) {
+  // --chords fit on the gear: the flanks' chains of chords become tangent biarcs through a curve
+  // fitted to the vertices. Measured (dev build): 90.4 % of the allowed length at ≥ 180 mm/s against
+  // 92.9 % blended, within 6.0 µm of the chords against 9.0 µm (P is 10 µm), and the contour takes
+  // 3.693 s against 3.456 s: these chords are coarse for the curve (next to the root and tip fillets
+  // they turn by 9-35° and the curvature changes fourfold from one vertex to the next), where the
+  // fitted curve's biarcs swing more than the blender's corner arcs. Fitting pays on finer chords
+  // (Contours.JoinedRunsKeepEveryLimitOnRandomWavyContours).
   const std::string text = gear_program();
   PlanOptions fit;
   fit.planner.junction.fit_chords = true;
@@ -380,14 +386,13 @@ TEST(Contours, FittedChordsHoldTheFeedOnMoreOfTheGearFlanks) {
   test::expect_within_limits(fitted, MotionLimits{});
   test::expect_continuous_junctions(fitted, MotionLimits{});
   expect_sampled_within_limits(fitted);
-  const GearShare with = gear_share(fitted), without = gear_share(blended);
-  EXPECT_GT(with.allowed, 0.150);
-  EXPECT_GE(with.tip_fast, 0.99 * with.tip_allowed);
-  EXPECT_GE(with.fast, 0.90 * with.allowed);
-  EXPECT_GT(with.fast / with.allowed - without.fast / without.allowed, 0.02);
+  const GearShare share = gear_share(fitted);
+  EXPECT_GT(share.allowed, 0.150);
+  EXPECT_GE(share.tip_fast, 0.99 * share.tip_allowed);
+  EXPECT_GE(share.fast, 0.88 * share.allowed);
   EXPECT_LE(gear_deviation_m(fitted, text), 0.01e-3 * (1 + 1e-6));
   EXPECT_GT(fitted.segments().size(), blended.segments().size());  // about two pieces per chord
-  EXPECT_LT(gear_contour_s(fitted), 1.03 * gear_contour_s(blended));
+  EXPECT_LT(gear_contour_s(fitted), 1.10 * gear_contour_s(blended));
 }
 
 }  // namespace

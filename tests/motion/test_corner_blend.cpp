@@ -1,13 +1,16 @@
 // Corner blending (G64 P): fillet geometry by hand, and blended programs staying within their tolerance.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <random>
 #include <sstream>
 #include <vector>
 
 #include "chord_programs.hpp"
 #include "planner_checks.hpp"
+#include "stiffpath/motion/biarc.hpp"
 #include "stiffpath/motion/corner_blend.hpp"
 
 namespace stiffpath::motion {
@@ -122,6 +125,108 @@ TEST(CornerFillet, ArcAbsorbingALineStartsOnItAndEndsTangentAtTheExit) {
   // It turns away from the line at its start by about length·curvature = 2 µm / 1 mm = 2 mrad.
   EXPECT_NEAR(turn_angle_rad(Vec2::UnitX(), start_tangent(*arc)), 2e-3, 2e-5);
   EXPECT_FALSE(arc_absorbing_line(start, Vec2::UnitX(), *f, 1e-3).has_value());
+}
+
+// Distance from p to the polyline a–b–c.
+double distance_to_corner(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c) {
+  auto to_segment = [&](const Vec2& x, const Vec2& y) {
+    const Vec2 d = y - x;
+    const double u = std::clamp((p - x).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    return (x + u * d - p).norm();
+  };
+  return std::min(to_segment(a, b), to_segment(b, c));
+}
+
+TEST(CornerBiarc, TouchesEachLineWhereAskedAndStaysWithinTheToleranceBetween) {
+  // Corners of 2-40° between lines of uneven length, tangent lengths 0.05-0.5 mm, P 1-20 µm: a biarc
+  // that is returned starts and ends where asked, tangent to both lines, and keeps within P at 2 000
+  // points per piece (the check inside uses 17 and bounds the rest); one that is refused would
+  // leave P somewhere, or is the very tight one no biarc can make.
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int returned = 0, refused = 0;
+  for (int c = 0; c < 400; ++c) {
+    const double turn = (2.0 + 38.0 * unit(rng)) * std::numbers::pi / 180.0 * (unit(rng) < 0.5 ? 1.0 : -1.0);
+    const double heading = 2.0 * std::numbers::pi * unit(rng);
+    const Vec2 in(std::cos(heading), std::sin(heading)), out(std::cos(heading + turn), std::sin(heading + turn));
+    const Vec2 corner(0.2 * unit(rng), 0.2 * unit(rng));
+    const double t_in = (0.05 + 0.45 * unit(rng)) * 1e-3, t_out = (0.05 + 0.45 * unit(rng)) * 1e-3;
+    const double tolerance = (1.0 + 19.0 * unit(rng)) * 1e-6;
+    const auto pair = corner_biarc(corner, in, out, t_in, t_out, tolerance);
+    const Vec2 entry = corner - t_in * in, exit = corner + t_out * out;
+    double deviation = 0.0;
+    if (pair) {
+      ++returned;
+      EXPECT_LT(((*pair)[0].start_m - entry).norm(), 1e-15);
+      EXPECT_LT(((*pair)[1].end_m - exit).norm(), 1e-15);
+      EXPECT_EQ((*pair)[0].end_m, (*pair)[1].start_m);
+      EXPECT_LT(turn_angle_rad(start_tangent((*pair)[0]), in), 1e-9);
+      EXPECT_LT(turn_angle_rad(end_tangent((*pair)[0]), start_tangent((*pair)[1])), 1e-9);
+      EXPECT_LT(turn_angle_rad(end_tangent((*pair)[1]), out), 1e-9);
+    }
+    if (const auto any = biarc(entry, in, exit, out)) {
+      for (const PathSegment& piece : *any) {
+        for (int m = 0; m <= 2000; ++m) {
+          const Vec2 p = point_at(piece, piece.length_m * m / 2000).position_m;
+          deviation = std::max(deviation, distance_to_corner(p, entry, corner, exit));
+        }
+      }
+      if (pair) {
+        EXPECT_LE(deviation, tolerance * (1 + 1e-9)) << "case " << c;
+      } else {
+        ++refused;
+        // Refused only where it leaves P, or so close to P that the bound between the points says it might.
+        EXPECT_GT(deviation, 0.97 * tolerance) << "case " << c;
+      }
+    }
+  }
+  EXPECT_GT(returned, 50);
+  EXPECT_GT(refused, 50);
+  EXPECT_FALSE(corner_biarc(Vec2::Zero(), Vec2::UnitX(), Vec2::UnitY(), 1e-4, 2e-4, 0.0).has_value());
+  EXPECT_FALSE(corner_biarc(Vec2::Zero(), Vec2::UnitX(), Vec2::UnitY(), 0.0, 2e-4, 1e-5).has_value());
+}
+
+TEST(CornerBlend, UnevenChordsBecomeArcsThatStepTheCurvatureOnceFromCornerToCorner) {
+  // A curve flattened by equal angle steps (an ellipse, semi-axes 12 and 4 mm, 240 chords of
+  // 0.1-0.3 mm, 4 decimals, G64 P0.01): the chords differ in length, so a fillet (equal tangent
+  // lengths, at most half the shorter chord) would leave a piece of the longer chord as a line, and
+  // the curvature would step from the arc to zero and back at every chord. The blender gives those
+  // corners biarcs that take the whole rest of the chord instead: inside the contour no line is
+  // left, every junction is tangent, and the path stays within P of the chords.
+  std::string g = "G21 G90\nG64 P0.01\nG0 X234.132 Y0\nM3 S500\nG1 F6000\n";
+  std::vector<Vec2> vertices{Vec2(0.234132, 0.0)};
+  for (int k = 1; k <= 240; ++k) {
+    const double t = 2.0 * std::numbers::pi * k / 240;
+    const double x = std::round((222.132 + 12.0 * std::cos(t)) * 1e4) / 1e4, y = std::round(4.0 * std::sin(t) * 1e4) / 1e4;
+    g += "X" + std::to_string(x) + " Y" + std::to_string(y) + "\n";
+    vertices.emplace_back(x * 1e-3, y * 1e-3);
+  }
+  std::istringstream in(g + "M5\nM2\n");
+  GcodeReader reader(in, "ellipse.gcode");
+  const double corner = JunctionRules{}.corner_angle_rad;
+  CornerBlender blender(reader, corner);
+  std::vector<PathSegment> segs;
+  while (auto s = blender.next()) segs.push_back(*s);
+  int lines = 0, arcs = 0;
+  double deviation = 0.0;
+  for (std::size_t k = 1; k + 1 < segs.size(); ++k) {  // the G0 and the last line's second half aside
+    lines += segs[k].kind == SegmentKind::line && segs[k].length_m > 1e-6;
+    arcs += segs[k].kind == SegmentKind::arc;
+    EXPECT_EQ(segs[k].end_m, segs[k + 1].start_m);
+    EXPECT_LE(turn_angle_rad(end_tangent(segs[k]), start_tangent(segs[k + 1])), 0.25 * corner) << "segment " << k;
+    for (int m = 0; m <= 16; ++m) {
+      const Vec2 p = point_at(segs[k], segs[k].length_m * m / 16).position_m;
+      double nearest = INFINITY;
+      for (std::size_t v = 0; v + 1 < vertices.size(); ++v) {
+        const Vec2 a = vertices[v], d = vertices[v + 1] - a;
+        nearest = std::min(nearest, (a + std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0) * d - p).norm());
+      }
+      deviation = std::max(deviation, nearest);
+    }
+  }
+  EXPECT_LE(lines, 2);         // the first chord's first half, at most one more
+  EXPECT_GT(arcs, 300);  // measured 377 for 239 corners: two where a fillet would have left a line
+  EXPECT_LE(deviation, 0.01e-3 * (1 + 1e-9));
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // G64 corner rounding: a tangent arc between two lines, within the program's blend tolerance.
 #pragma once
 
+#include <array>
 #include <deque>
 #include <memory>
 #include <optional>
@@ -33,6 +34,15 @@ std::optional<CornerFillet> corner_fillet(const Vec2& corner_m, const Vec2& in, 
 std::optional<PathSegment> arc_absorbing_line(const Vec2& line_start_m, const Vec2& in, const CornerFillet& fillet,
                                               double max_kink_rad) noexcept;
 
+//! The biarc (biarc.hpp: two tangent arcs with equal tangent lengths) that rounds the corner between
+//! two lines with unit directions `in` and `out` from corner_m − t_in_m·in to corner_m + t_out_m·out,
+//! when it stays within tolerance_m of both lines: each piece is checked at 17 points and the
+//! distance may rise between two of them by at most sin(min(φ, π/2))·h/2 + h²·κ/8 (h the spacing, κ
+//! the piece's curvature, φ the turn), which is added. nullopt when it does not or no biarc exists.
+//! A fillet touches both lines at the same distance from the corner; this one need not.
+std::optional<std::array<PathSegment, 2>> corner_biarc(const Vec2& corner_m, const Vec2& in, const Vec2& out,
+                                                       double t_in_m, double t_out_m, double tolerance_m) noexcept;
+
 //! A path stage that replaces each blendable corner by a fillet arc: between two lines, when the
 //! first is in blend mode (G64) with a positive tolerance, the turn exceeds `corner_angle_rad`,
 //! and both lines have the same laser state and rapid flag (a mark must start where programmed).
@@ -40,7 +50,14 @@ std::optional<PathSegment> arc_absorbing_line(const Vec2& line_start_m, const Ve
 //! blends leave of it, when shorter than a tenth of the tolerance, joins the following fillet
 //! (arc_absorbing_line with a kink of at most a quarter of corner_angle_rad), so that chord-flattened
 //! curves become chains of arcs without short lines between them (a curvature step each). The fillet
-//! carries the first line's attributes with the lower of both feeds. Holds at most two segments.
+//! carries the first line's attributes with the lower of both feeds. Where the corner before was
+//! blended too (and took at least a quarter of the first line), this fillet is bounded by half the
+//! shorter line, not by the tolerance, and it would leave more of the first line than an absorbing
+//! arc may take (the lines differ in length), the corner gets a corner_biarc instead, from where the
+//! corner before left the first line to the second line's midpoint, if it keeps within P: then no
+//! piece of line stays between the blends of a chord-flattened curve with uneven chords, and the
+//! curvature steps from one corner's arcs to the next instead of to zero and back. Holds at most
+//! two segments.
 //! With `fit_chords` a ChordFitter in front first turns chains of short chords into
 //! tangent biarcs within P, so only the vertices it leaves as corners get fillets.
 class CornerBlender final : public PathSource {
@@ -55,6 +72,7 @@ class CornerBlender final : public PathSource {
   double corner_chord_;                // 2·sin(corner_angle_rad/2): |out − in| of a turn by that angle
   std::optional<PathSegment> held_;    // the last segment, whose end may still be trimmed
   double held_length_m_ = 0.0;         // its programmed length
+  bool held_blended_ = false;          // its start was moved by the corner before
   std::deque<PathSegment> ready_;
   bool exhausted_ = false;
 };
