@@ -76,15 +76,17 @@ std::optional<std::array<PathSegment, 2>> corner_biarc(const Vec2& corner_m, con
   const std::optional<std::array<PathSegment, 2>> pieces = biarc(entry, in, exit, out);
   if (!pieces) return std::nullopt;
   // The distance to the two lines, min(d_in, d_out), is smooth along each piece except where the
-  // piece crosses the corner's bisector (d_in = d_out, a ridge): that point is found by bisection
-  // and checked itself; elsewhere a distance to a line varies along an arc with |d''| ≤ κ, so between
-  // two checked points it exceeds the higher of them by at most κ·h²/8.
+  // piece crosses the corner's bisector (d_in = d_out, a ridge): that point is found by bisection to
+  // h/1024 and checked with the distance's rise over that width (at most sin φ per unit length: the
+  // pieces' tangents lie between the two lines' directions); elsewhere a distance to a line varies
+  // along an arc with |d''| ≤ κ, so between two checked points it exceeds the higher by at most κ·h²/8.
   const Vec2 bisector = out - in;
+  const double slope = std::sin(std::min(turn_angle_rad(in, out), 0.5 * std::numbers::pi));
   auto deviation = [&](const Vec2& p) {
     return std::min(distance_to_segment(p, entry, corner_m), distance_to_segment(p, corner_m, exit));
   };
   auto side = [&](const Vec2& p) { return (p - corner_m).x() * bisector.y() - (p - corner_m).y() * bisector.x(); };
-  constexpr int intervals = 16;
+  constexpr int intervals = 8;
   for (const PathSegment& piece : *pieces) {
     const double h = piece.length_m / intervals;
     const double curvature = piece.kind == SegmentKind::arc ? 1.0 / piece.radius_m : 0.0;
@@ -96,11 +98,12 @@ std::optional<std::array<PathSegment, 2>> corner_biarc(const Vec2& corner_m, con
       const double this_side = side(p);
       if (m > 0 && (this_side < 0.0) != (previous_side < 0.0)) {  // the ridge lies in this interval
         double lo = h * (m - 1), hi = h * m;
-        for (int k = 0; k < 40; ++k) {
+        for (int k = 0; k < 10; ++k) {
           const double mid = 0.5 * (lo + hi);
           ((side(point_at(piece, mid).position_m) < 0.0) == (previous_side < 0.0) ? lo : hi) = mid;
         }
-        if (!(deviation(point_at(piece, 0.5 * (lo + hi)).position_m) + rise <= tolerance_m)) return std::nullopt;
+        const double ridge = deviation(point_at(piece, 0.5 * (lo + hi)).position_m) + slope * 0.5 * (hi - lo);
+        if (!(ridge + rise <= tolerance_m)) return std::nullopt;
       }
       previous_side = this_side;
     }

@@ -140,7 +140,7 @@ double distance_to_corner(const Vec2& p, const Vec2& a, const Vec2& b, const Vec
 TEST(CornerBiarc, TouchesEachLineWhereAskedAndStaysWithinTheToleranceBetween) {
   // Corners of 2-40° between lines of uneven length, tangent lengths 0.05-0.5 mm, P 1-20 µm: a biarc
   // that is returned starts and ends where asked, tangent to both lines, and keeps within P at 2 000
-  // points per piece (the check inside uses 17 and bounds the rest); one that is refused would
+  // points per piece (the check inside uses 9 and bounds the rest); one that is refused would
   // leave P somewhere, or is the very tight one no biarc can make.
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> unit(0.0, 1.0);

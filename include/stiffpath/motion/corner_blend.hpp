@@ -36,9 +36,9 @@ std::optional<PathSegment> arc_absorbing_line(const Vec2& line_start_m, const Ve
 
 //! The biarc (biarc.hpp: two tangent arcs with equal tangent lengths) that rounds the corner between
 //! two lines with unit directions `in` and `out` from corner_m − t_in_m·in to corner_m + t_out_m·out,
-//! when it stays within tolerance_m of both lines: each piece is checked at 17 points and the
-//! distance may rise between two of them by at most sin(min(φ, π/2))·h/2 + h²·κ/8 (h the spacing, κ
-//! the piece's curvature, φ the turn), which is added. nullopt when it does not or no biarc exists.
+//! when it stays within tolerance_m of both lines: each piece is checked at 9 points, plus where it
+//! crosses the corner's bisector (the distance's ridge), with a bound on how much the distance can
+//! rise between the checked points added. nullopt when it does not or no biarc exists.
 //! A fillet touches both lines at the same distance from the corner; this one need not.
 std::optional<std::array<PathSegment, 2>> corner_biarc(const Vec2& corner_m, const Vec2& in, const Vec2& out,
                                                        double t_in_m, double t_out_m, double tolerance_m) noexcept;
