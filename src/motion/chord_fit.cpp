@@ -41,19 +41,6 @@ bool continues(const PathSegment& a, const PathSegment& b) noexcept {
   return turn_angle_rad(in, out) <= max_turn_rad;
 }
 
-// A piece of the fitted curve with the attributes of the chord it replaces.
-PathSegment dressed(PathSegment piece, const PathSegment& chord) noexcept {
-  piece.feed_m_s = chord.feed_m_s;
-  piece.power = chord.power;
-  piece.dynamic_power = chord.dynamic_power;
-  piece.blend_tolerance_m = chord.blend_tolerance_m;
-  piece.line = chord.line;
-  piece.rapid = chord.rapid;
-  piece.laser_on = chord.laser_on;
-  piece.mode = chord.mode;
-  return piece;
-}
-
 double distance_to_segment(const Vec2& p, const Vec2& a, const Vec2& b) noexcept {
   const Vec2 ab = b - a;
   const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
@@ -233,7 +220,7 @@ void ChordFitter::fit_chain(bool ends_mid) {
       return true;
     };
     auto add_line = [&](const Vec2& a, const Vec2& b) {
-      if (b != a) out.push_back(dressed(make_line(a, b), chain_[k]));
+      if (b != a) out.push_back(carrying_attributes(make_line(a, b), chain_[k]));
     };
     auto add_biarc = [&](const Vec2& p0, const Vec2& t0, const Vec2& p1, const Vec2& t1) {
       const auto pieces = biarc(p0, t0, p1, t1);
@@ -244,7 +231,7 @@ void ChordFitter::fit_chain(bool ends_mid) {
       if ((*pieces)[0].kind == SegmentKind::line && (*pieces)[1].kind == SegmentKind::line) {
         add_line(p0, p1);
       } else {
-        for (const PathSegment& piece : *pieces) out.push_back(dressed(piece, chain_[k]));
+        for (const PathSegment& piece : *pieces) out.push_back(carrying_attributes(piece, chain_[k]));
       }
       return true;
     };
@@ -258,7 +245,7 @@ void ChordFitter::fit_chain(bool ends_mid) {
         if (const auto arc = entry_arc(v[k + 1], -u[k], through[k], -tangent[k])) {  // found backwards
           const PathSegment forward = make_arc(through[k], arc->start_m, arc->center_m, -arc->sweep_rad);
           if (arc->kind == SegmentKind::arc && within(forward)) {
-            out.push_back(dressed(forward, chain_[k]));
+            out.push_back(carrying_attributes(forward, chain_[k]));
             add_line(forward.end_m, v[k + 1]);
             return true;
           }
@@ -272,7 +259,7 @@ void ChordFitter::fit_chain(bool ends_mid) {
       if (const auto arc = entry_arc(v[k], u[k], through[k + 1], tangent[k + 1])) {
         if (arc->kind == SegmentKind::arc && within(*arc)) {
           add_line(v[k], arc->start_m);
-          out.push_back(dressed(*arc, chain_[k]));
+          out.push_back(carrying_attributes(*arc, chain_[k]));
           return true;
         }
       }

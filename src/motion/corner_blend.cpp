@@ -1,4 +1,4 @@
-// Corner blending for G64: tangent fillet arcs (or biarcs) between lines, trimming each line by at most half its length.
+// Corner blending for G64: tangent fillets (or biarcs) between lines, trimming each by at most half its length.
 #include "stiffpath/motion/corner_blend.hpp"
 
 #include <algorithm>
@@ -59,6 +59,13 @@ std::optional<PathSegment> arc_absorbing_line(const Vec2& line_start_m, const Ve
 }
 
 namespace {
+// A piece of a blend between lines a and b: a's attributes with the lower of both feeds.
+PathSegment blend_piece(const PathSegment& piece, const PathSegment& a, const PathSegment& b) noexcept {
+  PathSegment out = carrying_attributes(piece, a);
+  out.feed_m_s = std::min(a.feed_m_s, b.feed_m_s);
+  return out;
+}
+
 // What two blends may leave of a line for the second one's arc to absorb it (a tenth of P).
 double absorbed_line_m(double tolerance_m) noexcept { return 0.1 * tolerance_m; }
 
@@ -113,7 +120,9 @@ std::optional<std::array<PathSegment, 2>> corner_biarc(const Vec2& corner_m, con
 
 CornerBlender::CornerBlender(PathSource& source, double corner_angle_rad, bool fit_chords)
     : fitter_(fit_chords ? std::make_unique<ChordFitter>(source) : nullptr),
-      source_(fitter_ ? *fitter_ : source), corner_angle_rad_(corner_angle_rad), corner_chord_(2.0 * std::sin(0.5 * corner_angle_rad)) {}
+      source_(fitter_ ? *fitter_ : source),
+      corner_angle_rad_(corner_angle_rad),
+      corner_chord_(2.0 * std::sin(0.5 * corner_angle_rad)) {}
 
 std::optional<PathSegment> CornerBlender::next() {
   while (ready_.empty()) {
@@ -167,40 +176,23 @@ std::optional<PathSegment> CornerBlender::next() {
       a.end_m = entry;
       a.length_m = (a.end_m - a.start_m).norm();
       if (keep_line) ready_.push_back(a);
-      for (PathSegment piece : *pair) {
-        piece.feed_m_s = std::min(a.feed_m_s, b.feed_m_s);
-        piece.power = a.power;
-        piece.dynamic_power = a.dynamic_power;
-        piece.blend_tolerance_m = a.blend_tolerance_m;
-        piece.line = a.line;
-        piece.rapid = a.rapid;
-        piece.laser_on = a.laser_on;
-        piece.mode = a.mode;
-        ready_.push_back(piece);
-      }
+      for (const PathSegment& piece : *pair) ready_.push_back(blend_piece(piece, a, b));
       b.start_m = (*pair)[1].end_m;
       b.length_m = (b.end_m - b.start_m).norm();
     } else if (fillet) {
       a.end_m = fillet->entry_m;
       a.length_m = (a.end_m - a.start_m).norm();
       // If the two blends of a line leave (almost) nothing of it, the arc starts where the line did.
-      std::optional<PathSegment> absorbing =
-          a.length_m <= absorbed_line_m(a.blend_tolerance_m) ? arc_absorbing_line(a.start_m, in, *fillet, 0.25 * corner_angle_rad_)
-                                                  : std::nullopt;
+      const std::optional<PathSegment> absorbing =
+          a.length_m <= absorbed_line_m(a.blend_tolerance_m)
+              ? arc_absorbing_line(a.start_m, in, *fillet, 0.25 * corner_angle_rad_)
+              : std::nullopt;
       const bool keep_line = !absorbing && a.length_m >= shortest_segment_m;
-      PathSegment arc = absorbing ? *absorbing
-                                  : make_arc(keep_line ? fillet->entry_m : a.start_m, fillet->exit_m, fillet->center_m,
-                                             fillet->sweep_rad);
-      arc.feed_m_s = std::min(a.feed_m_s, b.feed_m_s);
-      arc.power = a.power;
-      arc.dynamic_power = a.dynamic_power;
-      arc.blend_tolerance_m = a.blend_tolerance_m;
-      arc.line = a.line;
-      arc.rapid = a.rapid;
-      arc.laser_on = a.laser_on;
-      arc.mode = a.mode;
+      const PathSegment arc = absorbing ? *absorbing
+                                        : make_arc(keep_line ? fillet->entry_m : a.start_m, fillet->exit_m,
+                                                   fillet->center_m, fillet->sweep_rad);
       if (keep_line) ready_.push_back(a);
-      ready_.push_back(arc);
+      ready_.push_back(blend_piece(arc, a, b));
       b.start_m = fillet->exit_m;
       b.length_m = (b.end_m - b.start_m).norm();
     } else {

@@ -15,6 +15,18 @@ PathSegment make_line(const Vec2& start_m, const Vec2& end_m) {
   return segment;
 }
 
+PathSegment carrying_attributes(PathSegment piece, const PathSegment& source) noexcept {
+  piece.feed_m_s = source.feed_m_s;
+  piece.power = source.power;
+  piece.dynamic_power = source.dynamic_power;
+  piece.blend_tolerance_m = source.blend_tolerance_m;
+  piece.line = source.line;
+  piece.rapid = source.rapid;
+  piece.laser_on = source.laser_on;
+  piece.mode = source.mode;
+  return piece;
+}
+
 PathSegment make_arc(const Vec2& start_m, const Vec2& end_m, const Vec2& center_m, double sweep_rad) {
   PathSegment segment;
   segment.kind = SegmentKind::arc;

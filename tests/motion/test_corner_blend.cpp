@@ -197,7 +197,8 @@ TEST(CornerBlend, UnevenChordsBecomeArcsThatStepTheCurvatureOnceFromCornerToCorn
   std::vector<Vec2> vertices{Vec2(0.234132, 0.0)};
   for (int k = 1; k <= 240; ++k) {
     const double t = 2.0 * std::numbers::pi * k / 240;
-    const double x = std::round((222.132 + 12.0 * std::cos(t)) * 1e4) / 1e4, y = std::round(4.0 * std::sin(t) * 1e4) / 1e4;
+    const double x = std::round((222.132 + 12.0 * std::cos(t)) * 1e4) / 1e4;
+    const double y = std::round(4.0 * std::sin(t) * 1e4) / 1e4;
     g += "X" + std::to_string(x) + " Y" + std::to_string(y) + "\n";
     vertices.emplace_back(x * 1e-3, y * 1e-3);
   }

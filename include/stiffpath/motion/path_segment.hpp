@@ -60,6 +60,10 @@ PathSegment make_line(const Vec2& start_m, const Vec2& end_m);
 //! An arc from start_m about center_m through the signed angle sweep_rad, ending exactly at end_m
 //! (the caller guarantees |end − centre| = |start − centre| up to rounding).
 PathSegment make_arc(const Vec2& start_m, const Vec2& end_m, const Vec2& center_m, double sweep_rad);
+
+//! `piece` (a line or arc that replaces part of `source`) with source's feed, laser state and power,
+//! blend tolerance, source line, rapid flag and junction mode.
+PathSegment carrying_attributes(PathSegment piece, const PathSegment& source) noexcept;
 //! A dwell of duration_s at point_m.
 PathSegment make_dwell(const Vec2& point_m, double duration_s);
 
