@@ -161,21 +161,21 @@ std::optional<PathSegment> CornerBlender::next() {
         a.length_m - fillet->trim_m > absorbed_line_m(a.blend_tolerance_m)) {
       pair = corner_biarc(a.end_m, in, out, a.length_m, 0.5 * b.length_m, a.blend_tolerance_m);
     }
-    if (pair) {
-      // What is left of the first line: kept, or (shorter than shortest_segment_m) taken into the
-      // first arc, which then starts where the line did.
-      const Vec2 entry = (*pair)[0].start_m;
-      bool keep_line = (entry - a.start_m).norm() >= shortest_segment_m;
-      if (!keep_line) {
-        if (const std::optional<PathSegment> first = arc_from_tangent(a.start_m, in, (*pair)[0].end_m)) {
-          (*pair)[0] = *first;
-        } else {
-          keep_line = true;
-        }
+    // What is left of the first line: kept, or (shorter than shortest_segment_m, as it is when the
+    // biarc takes all of it) taken into the first arc, which then starts exactly where the line did.
+    const bool keep_rest = pair && ((*pair)[0].start_m - a.start_m).norm() >= shortest_segment_m;
+    if (pair && !keep_rest) {
+      if (const std::optional<PathSegment> first = arc_from_tangent(a.start_m, in, (*pair)[0].end_m)) {
+        (*pair)[0] = *first;
+      } else {
+        pair.reset();
       }
+    }
+    if (pair) {
+      const Vec2 entry = (*pair)[0].start_m;
       a.end_m = entry;
       a.length_m = (a.end_m - a.start_m).norm();
-      if (keep_line) ready_.push_back(a);
+      if (keep_rest) ready_.push_back(a);
       for (const PathSegment& piece : *pair) ready_.push_back(blend_piece(piece, a, b));
       b.start_m = (*pair)[1].end_m;
       b.length_m = (b.end_m - b.start_m).norm();
