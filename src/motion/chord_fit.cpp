@@ -41,12 +41,6 @@ bool continues(const PathSegment& a, const PathSegment& b) noexcept {
   return turn_angle_rad(in, out) <= max_turn_rad;
 }
 
-double distance_to_segment(const Vec2& p, const Vec2& a, const Vec2& b) noexcept {
-  const Vec2 ab = b - a;
-  const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-  return (p - (a + t * ab)).norm();
-}
-
 // The curve through the chords near vertex i: y = c0 + c1·x + c2·x² (+ c3·x³) in the frame at v_i whose x axis
 // runs from v_{i−1} to v_{i+1}, fitted by least squares to v_{i−w} … v_{i+w}. w = 1 interpolates the
 // three points (the circle through them to second order); wider stencils average the coordinates'
@@ -215,7 +209,7 @@ void ChordFitter::fit_chain(bool ends_mid) {
     auto within = [&](const PathSegment& piece) {
       for (int m = 0; m <= checks_per_piece; ++m) {
         const Vec2 p = point_at(piece, piece.length_m * m / checks_per_piece).position_m;
-        if (!(distance_to_segment(p, v[k], v[k + 1]) <= tolerance * (1.0 + 1e-9))) return false;
+        if (!(distance_to_segment_m(p, v[k], v[k + 1]) <= tolerance * (1.0 + 1e-9))) return false;
       }
       return true;
     };

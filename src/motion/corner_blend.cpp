@@ -68,12 +68,6 @@ PathSegment blend_piece(const PathSegment& piece, const PathSegment& a, const Pa
 
 // What two blends may leave of a line for the second one's arc to absorb it (a tenth of P).
 double absorbed_line_m(double tolerance_m) noexcept { return 0.1 * tolerance_m; }
-
-double distance_to_segment(const Vec2& p, const Vec2& a, const Vec2& b) noexcept {
-  const Vec2 ab = b - a;
-  const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-  return (a + t * ab - p).norm();
-}
 }  // namespace
 
 std::optional<std::array<PathSegment, 2>> corner_biarc(const Vec2& corner_m, const Vec2& in, const Vec2& out,
@@ -90,7 +84,7 @@ std::optional<std::array<PathSegment, 2>> corner_biarc(const Vec2& corner_m, con
   const Vec2 bisector = out - in;
   const double slope = std::sin(std::min(turn_angle_rad(in, out), 0.5 * std::numbers::pi));
   auto deviation = [&](const Vec2& p) {
-    return std::min(distance_to_segment(p, entry, corner_m), distance_to_segment(p, corner_m, exit));
+    return std::min(distance_to_segment_m(p, entry, corner_m), distance_to_segment_m(p, corner_m, exit));
   };
   auto side = [&](const Vec2& p) { return (p - corner_m).x() * bisector.y() - (p - corner_m).y() * bisector.x(); };
   constexpr int intervals = 8;

@@ -15,6 +15,12 @@ PathSegment make_line(const Vec2& start_m, const Vec2& end_m) {
   return segment;
 }
 
+double distance_to_segment_m(const Vec2& p, const Vec2& a, const Vec2& b) noexcept {
+  const Vec2 ab = b - a;
+  const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  return (a + t * ab - p).norm();
+}
+
 PathSegment carrying_attributes(PathSegment piece, const PathSegment& source) noexcept {
   piece.feed_m_s = source.feed_m_s;
   piece.power = source.power;

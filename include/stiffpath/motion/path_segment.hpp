@@ -70,6 +70,9 @@ PathSegment make_dwell(const Vec2& point_m, double duration_s);
 //! Position, unit tangent and curvature at arc length s (clamped to [0, length]); s ≥ length gives
 //! exactly end_m. Dwells give their point with tangent +x.
 PathPoint point_at(const PathSegment& segment, double s_m) noexcept;
+
+//! Distance from p to the straight segment from a to b (a ≠ b), m.
+double distance_to_segment_m(const Vec2& p, const Vec2& a, const Vec2& b) noexcept;
 //! Unit tangent where the segment starts / ends.
 Vec2 start_tangent(const PathSegment& segment) noexcept;
 Vec2 end_tangent(const PathSegment& segment) noexcept;
