@@ -1,10 +1,10 @@
 // stiffpath-halstream: a joint file of `stiffpath run` (CSV or binary) as lines for LinuxCNC's halstreamer.
 //
-// One line per sample: the sample number (from 1), θ1 and θ2 in degrees (or radians) with 17 significant
-// digits, so that halstreamer's strtod gets back the file's doubles, and optionally the laser bit; the last
-// line is repeated once (a LinuxCNC 2.9 streamer quirk, below). The
-// matching streamer is `loadrt streamer cfg=uff` (`uffb` with --laser). The file's sample rate must be
-// the servo thread's (--period-ns), since streamer puts out one line per period.
+// One line per sample: the sample number (from 1), θ1 and θ2 in degrees (or radians), the laser bit and the
+// laser power (0..1), numbers with 17 significant digits so that halstreamer's strtod gets back the file's
+// doubles; the last line is repeated once with the laser off (a LinuxCNC 2.9 streamer quirk, below). The matching streamer is
+// `loadrt streamer cfg=uffbf` (`uff` with --joints-only). The file's sample rate must be the servo thread's
+// (--period-ns), since streamer puts out one line per period.
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
@@ -28,8 +28,19 @@ struct Options {
   std::string output;           // empty: standard output
   long long period_ns = 500000;
   std::string units = "deg";
-  bool laser = false;
+  bool joints_only = false;
 };
+
+// One line: sample number, the joints (scaled to the stream's units), and unless joints_only the laser bit and power.
+void write_line(std::ostream& out, std::uint64_t n, const compensation::JointCommand& c, double scale, bool joints_only,
+                bool laser) {
+  char line[160];
+  const int length = joints_only ? std::snprintf(line, sizeof line, "%llu %.17g %.17g\n", static_cast<unsigned long long>(n),
+                                                 c.q_rad.x() * scale, c.q_rad.y() * scale)
+                                 : std::snprintf(line, sizeof line, "%llu %.17g %.17g %d %.17g\n", static_cast<unsigned long long>(n),
+                                                 c.q_rad.x() * scale, c.q_rad.y() * scale, laser ? 1 : 0, laser ? c.power : 0.0);
+  out.write(line, length);
+}
 
 // Converts and writes; throws stiffpath::Error for a bad file or a rate that does not match the period.
 void convert(const Options& o, std::ostream& out) {
@@ -40,9 +51,9 @@ void convert(const Options& o, std::ostream& out) {
   job::JointReader reader(o.input);
   std::uint64_t n = 0;
   double first_t = 0.0;
-  char line[128];
+  compensation::JointCommand last;
   out << fmt::format("# {} as halstreamer input: one line per {} ns servo period; columns: sample, theta1_{}, theta2_{}{}\n",
-                     o.input, o.period_ns, o.units, o.units, o.laser ? ", laser" : "");
+                     o.input, o.period_ns, o.units, o.units, o.joints_only ? "" : ", laser, power");
   while (const auto record = reader.next()) {
     if (n == 0) first_t = record->t_s;
     // The samples must fall on the servo period's grid: half a period off means another rate.
@@ -53,19 +64,18 @@ void convert(const Options& o, std::ostream& out) {
                               o.input, n + 1, record->t_s, expected_t, o.period_ns, 1e9 / static_cast<double>(o.period_ns)));
     }
     ++n;
-    const int length = o.laser ? std::snprintf(line, sizeof line, "%llu %.17g %.17g %d\n", static_cast<unsigned long long>(n),
-                                               record->q_rad.x() * scale, record->q_rad.y() * scale, record->laser_on ? 1 : 0)
-                               : std::snprintf(line, sizeof line, "%llu %.17g %.17g\n", static_cast<unsigned long long>(n),
-                                               record->q_rad.x() * scale, record->q_rad.y() * scale);
-    out.write(line, length);
+    last = *record;
+    write_line(out, n, last, scale, o.joints_only, last.laser_on);
     if (n >= 0xFFFFFFFFull) throw Error(fmt::format("{}: more than 2^32 - 1 samples, more than a u32 pin counts", o.input));
   }
   if (n == 0) throw Error(fmt::format("{}: no samples", o.input));
   // LinuxCNC 2.9's streamer counts the FIFO one short when its indices have wrapped, and so never plays
   // a stream's last line if that line sits in the FIFO's last slot. Repeating it costs one period of
-  // standing still and makes sure the real last command is played.
-  out << "# the last sample again, so that streamer plays the one before (see docs/linuxcnc.md)\n";
-  out.write(line, static_cast<std::streamsize>(std::strlen(line)));
+  // standing still and makes sure the real last command is played. The repeat has the laser off: the
+  // streamer holds its last line's values after the stream, and the laser must not stay on.
+  out << "# the last sample again with the laser off, so that streamer plays the one before and the laser ends off "
+         "(see docs/linuxcnc.md)\n";
+  write_line(out, n, last, scale, o.joints_only, false);
 }
 
 }  // namespace
@@ -77,7 +87,8 @@ int main(int argc, char** argv) {
   app.add_option("-o,--output", o.output, "Output file (written atomically); default: standard output");
   app.add_option("--period-ns", o.period_ns, "Servo period the stream is played at (ns)")->capture_default_str();
   app.add_option("--units", o.units, "Joint units of the machine: deg or rad")->capture_default_str();
-  app.add_flag("--laser", o.laser, "Add the laser on/off bit as a fourth column (streamer cfg=uffb)");
+  app.add_flag("--joints-only", o.joints_only,
+               "Only the sample number and the joints (streamer cfg=uff); default: with the laser bit and power (cfg=uffbf)");
   CLI11_PARSE(app, argc, argv);
   try {
     if (o.output.empty()) {

@@ -66,11 +66,13 @@ license "GPL";
 author "stiffpath";
 include <rtapi_math.h>;
 include <stiffpath/stiffpath.h>;
+include "stiffpath_ini.h";
 ;;
-static char *robot = "oc-gu";
-RTAPI_MP_STRING(robot, "stiffpath robot: a preset name or the absolute path of a robot file");
+static char *robot = "";
+RTAPI_MP_STRING(robot, "stiffpath robot: a preset name or the absolute path of a robot file (default: the INI's [STIFFPATH]ROBOT)");
 static char *model = "";
-RTAPI_MP_STRING(model, "compliance model: a model file or built-in name; empty for the robot's default");
+RTAPI_MP_STRING(model, "compliance model: a model file or built-in name (default: the INI's [STIFFPATH]MODEL when robot "
+                       "comes from the INI, else the robot's own)");
 
 #define DEG_PER_RAD (180.0 / M_PI)
 
@@ -87,12 +89,24 @@ static hal_bit_t last_reset = 0;
 static double held_out[2], held_correction[2];
 
 EXTRA_SETUP() {
+  static char robot_name[1024], model_name[1024]; /* called once, at load time: not on the stack */
   char error[512];
+  const char *why = "";
   (void)prefix;
   (void)extra_arg;
-  compensator = stiffpath_compensator_create(robot, model, NULL, error, sizeof error);
+  snprintf(robot_name, sizeof robot_name, "%s", robot);
+  snprintf(model_name, sizeof model_name, "%s", model);
+  if (!robot[0]) { /* both from the INI: [STIFFPATH]ROBOT, and MODEL if it has one */
+    if (stiffpath_ini_setting("ROBOT", robot_name, sizeof robot_name, &why) != 0) {
+      rtapi_print_msg(RTAPI_MSG_ERR, "stiffpathcomp: no robot: give robot=... or [STIFFPATH]ROBOT in the INI file (%s)\n", why);
+      return -EINVAL;
+    }
+    if (!model[0] && stiffpath_ini_setting("MODEL", model_name, sizeof model_name, &why) != 0) model_name[0] = '\0';
+  }
+  compensator = stiffpath_compensator_create(robot_name, model_name[0] ? model_name : NULL, NULL, error, sizeof error);
   if (!compensator) {
-    rtapi_print_msg(RTAPI_MSG_ERR, "stiffpathcomp: robot=%s model=%s: %s\n", robot, model, error);
+    rtapi_print_msg(RTAPI_MSG_ERR, "stiffpathcomp: robot %s, model %s: %s\n", robot_name,
+                    model_name[0] ? model_name : "(the robot's own)", error);
     return -EINVAL;
   }
   kinematics = stiffpath_compensator_robot(compensator);

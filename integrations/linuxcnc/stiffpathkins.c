@@ -3,9 +3,12 @@
  * Joints 0 and 1 are the actuated angles θ1, θ2 in degrees; axes X and Y are the end point in
  * machine units (module parameter `units`). Forward and inverse kinematics are the library's
  * (stiffpath_forward / stiffpath_inverse of include/stiffpath/stiffpath.h) for the robot named by the
- * module parameter `robot`: a preset (oc-gu, oc-gl, sc-gu, sc-gl) or a robot file, so whatever
- * geometry the robot file describes, this module follows it. Load with e.g.
- *   [KINS]KINEMATICS = stiffpathkins robot=oc-gu units=mm
+ * INI's [STIFFPATH]ROBOT (a preset: oc-gu, oc-gl, sc-gu, sc-gl, or a robot file), so whatever geometry the
+ * robot file describes, this module follows it, and the INI names the robot once:
+ *   [KINS]KINEMATICS = stiffpathkins          (HAL: loadrt [KINS]KINEMATICS)
+ *   [STIFFPATH]ROBOT = /path/to/robot.json
+ * The module parameters `robot` and `units` override the INI ([STIFFPATH]ROBOT, [TRAJ]LINEAR_UNITS); under
+ * halrun, which sets no INI_FILE_NAME, `robot` must be given.
  * The inverse refuses (returns −1, which stops motion) a point outside the robot's singularity
  * margin; read-only parameters show the robot file's joint limits in degrees, to compare with the
  * INI's [JOINT_n] limits. See docs/linuxcnc.md. */
@@ -16,15 +19,16 @@
 #include "rtapi_math.h"
 #include "rtapi_string.h"
 #include "stiffpath/stiffpath.h"
+#include "stiffpath_ini.h"
 
 MODULE_AUTHOR("stiffpath");
 MODULE_DESCRIPTION("Five-bar kinematics from the stiffpath library");
 MODULE_LICENSE("GPL");
 
-static char *robot = "oc-gu";
-RTAPI_MP_STRING(robot, "stiffpath robot: a preset name or the absolute path of a robot file");
-static char *units = "mm";
-RTAPI_MP_STRING(units, "machine linear units: mm, inch or m");
+static char *robot = "";
+RTAPI_MP_STRING(robot, "stiffpath robot: a preset name or the absolute path of a robot file (default: the INI's [STIFFPATH]ROBOT)");
+static char *units = "";
+RTAPI_MP_STRING(units, "machine linear units: mm, inch or m (default: the INI's [TRAJ]LINEAR_UNITS, else mm)");
 
 KINS_NOT_SWITCHABLE
 EXPORT_SYMBOL(kinematicsType);
@@ -84,11 +88,28 @@ int kinematicsInverse(const EmcPose *pos, double *joints, const KINEMATICS_INVER
   return 0;
 }
 
+/* LinuxCNC's names of [TRAJ]LINEAR_UNITS and ours. */
 static int parse_units(const char *text, double *meters) {
-  if (strcmp(text, "mm") == 0) *meters = 0.001;
-  else if (strcmp(text, "inch") == 0) *meters = 0.0254;
+  if (strcmp(text, "mm") == 0 || strcmp(text, "metric") == 0) *meters = 0.001;
+  else if (strcmp(text, "inch") == 0 || strcmp(text, "in") == 0 || strcmp(text, "imperial") == 0) *meters = 0.0254;
   else if (strcmp(text, "m") == 0) *meters = 1.0;
   else return -1;
+  return 0;
+}
+
+/* The robot and units: the module parameters, else the INI's [STIFFPATH]ROBOT and [TRAJ]LINEAR_UNITS. */
+static int find_settings(char *robot_name, size_t robot_size, char *unit_name, size_t unit_size) {
+  const char *why = "";
+  if (robot[0]) {
+    snprintf(robot_name, robot_size, "%s", robot);
+  } else if (stiffpath_ini_setting("ROBOT", robot_name, robot_size, &why) != 0) {
+    rtapi_print_msg(RTAPI_MSG_ERR, "stiffpathkins: no robot: give robot=... or [STIFFPATH]ROBOT in the INI file (%s)\n",
+                    why);
+    return -1;
+  }
+  const char *ini = getenv("INI_FILE_NAME");
+  if (units[0]) snprintf(unit_name, unit_size, "%s", units);
+  else if (!ini || stiffpath_ini_get(ini, "TRAJ", "LINEAR_UNITS", unit_name, unit_size) != 0) snprintf(unit_name, unit_size, "mm");
   return 0;
 }
 
@@ -119,14 +140,15 @@ static int export_pins(void) {
 }
 
 int rtapi_app_main(void) {
-  char error[512];
-  if (parse_units(units, &m_per_unit) != 0) {
-    rtapi_print_msg(RTAPI_MSG_ERR, "stiffpathkins: units=%s: must be mm, inch or m\n", units);
+  char error[512], robot_name[1024], unit_name[64];
+  if (find_settings(robot_name, sizeof robot_name, unit_name, sizeof unit_name) != 0) return -EINVAL;
+  if (parse_units(unit_name, &m_per_unit) != 0) {
+    rtapi_print_msg(RTAPI_MSG_ERR, "stiffpathkins: units %s: must be mm (metric), inch (imperial) or m\n", unit_name);
     return -EINVAL;
   }
-  the_robot = stiffpath_robot_load(robot, error, sizeof error);
+  the_robot = stiffpath_robot_load(robot_name, error, sizeof error);
   if (!the_robot) {
-    rtapi_print_msg(RTAPI_MSG_ERR, "stiffpathkins: robot=%s: %s\n", robot, error);
+    rtapi_print_msg(RTAPI_MSG_ERR, "stiffpathkins: robot %s: %s\n", robot_name, error);
     return -EINVAL;
   }
   comp_id = hal_init("stiffpathkins");
