@@ -25,6 +25,7 @@ void add_render_scan_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
 void add_experiment_command(CLI::App& app);
 void add_report_command(CLI::App& app);
+void add_linuxcnc_command(CLI::App& app);
 
 //! Prints a JSON document on stdout (two-space indent, newline).
 void print_json(const nlohmann::json& document);
