@@ -57,10 +57,10 @@ case "$what" in
     # the build folder, so the dev tree's objects are found; the modules carry no debug information).
     launcher=()
     command -v ccache >/dev/null && launcher=(-DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-    cmake -S . -B build/makefiles -G "Unix Makefiles" -DSTIFFPATH_LINUXCNC=ON -DSTIFFPATH_BUILD_TESTS=OFF \
+    cmake -S . -B build/make -G "Unix Makefiles" -DSTIFFPATH_LINUXCNC=ON -DSTIFFPATH_BUILD_TESTS=OFF \
       -DSTIFFPATH_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -g1 -DNDEBUG" \
       "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O2 -g1 -DNDEBUG" "${launcher[@]}" >/dev/null
-    CCACHE_NOHASHDIR=1 cmake --build build/makefiles -j "$jobs" --target stiffpath_linuxcnc_modules
+    CCACHE_NOHASHDIR=1 cmake --build build/make -j "$jobs" --target stiffpath_linuxcnc_modules
     sudo_cmd=()
     [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
     "${sudo_cmd[@]}" cmake --build --preset dev --target stiffpath_linuxcnc_install_modules

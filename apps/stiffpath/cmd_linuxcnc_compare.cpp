@@ -60,19 +60,31 @@ std::vector<PathPoint> on_path(const std::vector<RecordRow>& rows, const kinemat
   return points;
 }
 
-// The commanded point of `route` at position s of its laser-on stretch `interval` (linear between its samples;
-// clamped at the stretch's ends).
-std::array<double, 2> command_at(const std::vector<PathPoint>& route, int interval, double s) {
-  const auto first = std::lower_bound(route.begin(), route.end(), interval,
-                                      [](const PathPoint& p, int i) { return p.interval < i; });
-  const auto last = std::upper_bound(first, route.end(), interval, [](int i, const PathPoint& p) { return i < p.interval; });
-  const auto after = std::lower_bound(first, last, s, [](const PathPoint& p, double v) { return p.s_mm < v; });
-  if (after == first) return {after->command_mm[0], after->command_mm[1]};
-  if (after == last) return {(last - 1)->command_mm[0], (last - 1)->command_mm[1]};
-  const auto& b = *after;
-  const auto& a = *(after - 1);
-  const double f = b.s_mm > a.s_mm ? (s - a.s_mm) / (b.s_mm - a.s_mm) : 1.0;
-  return {a.command_mm[0] + f * (b.command_mm[0] - a.command_mm[0]), a.command_mm[1] + f * (b.command_mm[1] - a.command_mm[1])};
+// Distance (mm) from `point` to the segment a–b.
+double to_segment(const double point[2], const double a[2], const double b[2]) {
+  const double dx = b[0] - a[0], dy = b[1] - a[1], length2 = dx * dx + dy * dy;
+  double f = length2 > 0.0 ? ((point[0] - a[0]) * dx + (point[1] - a[1]) * dy) / length2 : 0.0;
+  f = std::clamp(f, 0.0, 1.0);
+  return std::hypot(point[0] - (a[0] + f * dx), point[1] - (a[1] + f * dy));
+}
+
+// Distance (mm) from the commanded point `p` to the other route's commanded path: the polyline of its commanded
+// points in the same laser-on stretch whose planned position lies within kWindow_mm of p's (plus the samples just
+// outside, so that the window's edge segments count). Where the robot stands at a corner the command still moves
+// (the correction changes with the acceleration), so the comparison is of the paths drawn, not of points at one s.
+double distance_to_route(const std::vector<PathPoint>& route, const PathPoint& p) {
+  constexpr double kWindow_mm = 1.0;
+  const auto first = std::lower_bound(route.begin(), route.end(), p.interval,
+                                      [](const PathPoint& q, int i) { return q.interval < i; });
+  const auto last = std::upper_bound(first, route.end(), p.interval, [](int i, const PathPoint& q) { return i < q.interval; });
+  if (first == last) return 0.0;
+  auto lo = std::lower_bound(first, last, p.s_mm - kWindow_mm, [](const PathPoint& q, double v) { return q.s_mm < v; });
+  auto hi = std::upper_bound(lo, last, p.s_mm + kWindow_mm, [](double v, const PathPoint& q) { return v < q.s_mm; });
+  if (lo != first) --lo;
+  if (hi != last) ++hi;
+  double best = std::hypot(p.command_mm[0] - lo->command_mm[0], p.command_mm[1] - lo->command_mm[1]);
+  for (auto q = lo; q + 1 < hi; ++q) best = std::min(best, to_segment(p.command_mm, q->command_mm, (q + 1)->command_mm));
+  return best;
 }
 
 }  // namespace
@@ -93,8 +105,7 @@ Comparison compare_routes(const std::vector<RecordRow>& linuxcnc, const std::vec
   c.comparable = c.routes[0].intervals == c.routes[1].intervals && c.routes[0].intervals > 0;
   for (int r = 0; r < 2 && c.comparable; ++r) {
     for (const auto& p : routes[r]) {
-      const auto other = command_at(routes[1 - r], p.interval, p.s_mm);
-      const double d_um = 1e3 * std::hypot(p.command_mm[0] - other[0], p.command_mm[1] - other[1]);
+      const double d_um = 1e3 * distance_to_route(routes[1 - r], p);
       if (r == 0) data += fmt::format("{:.6f} {:.4f}\n", p.path_mm, d_um);
       if (d_um > c.largest_difference_um) {
         c.largest_difference_um = d_um;
@@ -113,10 +124,10 @@ set ylabel 'planned speed (mm/s)'
 plot 'compare.tsv' index 0 using 1:2 with lines lw 2 title 'LinuxCNC plans', '' index 1 using 1:2 with lines lw 2 title 'stiffpath plans'
 set xlabel 'distance travelled with the laser on (mm)'
 set ylabel 'µm'
-plot 'compare.tsv' index 0 using 1:3 with lines lw 2 title '|correction|, LinuxCNC plans', '' index 1 using 1:3 with lines lw 2 title '|correction|, stiffpath plans', '' index 2 using 1:2 with lines lw 2 dt 2 title 'distance between the commanded points'
+plot 'compare.tsv' index 0 using 1:3 with lines lw 2 title '|correction|, LinuxCNC plans', '' index 1 using 1:3 with lines lw 2 title '|correction|, stiffpath plans', '' index 2 using 1:2 with lines lw 2 dt 2 title 'distance to the other route''s commanded path'
 unset multiplot
 )",
-                                             report::quote(fmt::format("one job, two routes: the commanded points differ by up to {:.1f} µm",
+                                             report::quote(fmt::format("one job, two routes: the commanded tool paths lie up to {:.1f} µm apart",
                                                                        c.largest_difference_um)));
     report::render(dir, report::Figure{"compare", commands, 1000, 800});
   }

@@ -22,8 +22,9 @@ struct Comparison {
   RouteSummary routes[2];    //!< [0] LinuxCNC plans, [1] stiffpath plans
   //! Both routes switch the laser on equally often, so their stretches can be paired.
   bool comparable = false;
-  //! The largest distance between the two routes' commanded tool points FK(θ) at the same place of the
-  //! same laser-on stretch (arc length s of the planned points from the stretch's start), both ways.
+  //! The largest distance from a commanded tool point FK(θ) of one route to the other route's commanded path
+  //! (the polyline of its commanded points in the same laser-on stretch, within 1 mm of planned path length of
+  //! the point's place), both ways: how far apart the two routes' drive commands draw the job.
   double largest_difference_um = 0.0;
   double at_path_mm = 0.0;   //!< the s where it occurs
   int at_interval = 0;       //!< in which stretch (0, 1, …)

@@ -419,7 +419,7 @@ void run(const RunArgs& a) {
       fmt::print(stderr, "warning: the routes switch the laser on {} and {} times: their laser paths cannot be paired, "
                          "so there is no difference and no figure\n", c.routes[0].intervals, c.routes[1].intervals);
     } else {
-      fmt::print("  the two routes' commanded points differ by up to {:.1f} um (laser-on stretch {}, {:.1f} mm from its start); "
+      fmt::print("  the two routes' commanded tool paths lie up to {:.1f} um apart (laser-on stretch {}, {:.1f} mm from its start); "
                "laser on over {:.1f} / {:.1f} mm for {:.4f} / {:.4f} s\n",
                c.largest_difference_um, c.at_interval + 1, c.at_path_mm, c.routes[0].laser_path_mm, c.routes[1].laser_path_mm,
                c.routes[0].laser_s, c.routes[1].laser_s);

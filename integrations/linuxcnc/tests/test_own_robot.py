@@ -108,7 +108,8 @@ late = [check_laser_edges(check, machine, EXPECTED, "LinuxCNC's route"), check_l
 print("laser edges: at most %d / %d period(s) from where the paths begin and end" % tuple(late))
 
 # 4. The commanded points are the planned ones moved by a correction (forward kinematics written out here), and the
-#    comparison's largest difference recomputed from the two records.
+#    comparison's number recomputed from the two records: the largest distance from a commanded point of one route to
+#    the other's commanded path nearby (within 1 mm of planned path length, in the same laser-on stretch).
 robot = FiveBar(robot_file)
 
 
@@ -128,15 +129,21 @@ def laser_path(rows, points):  # per stretch: [(s_mm, command point)]
     return out
 
 
-def at(path, s):  # linear between the samples around s, the first sample at or after s being the upper one
-    i = bisect.bisect_left([point[0] for point in path], s)
-    if i == 0:
-        return path[0][1]
-    if i == len(path):
-        return path[-1][1]
-    (s0, p0), (s1, p1) = path[i - 1], path[i]
-    f = (s - s0) / (s1 - s0) if s1 > s0 else 1.0
-    return (p0[0] + f * (p1[0] - p0[0]), p0[1] + f * (p1[1] - p0[1]))
+def to_segment(p, a, b):
+    dx, dy = b[0] - a[0], b[1] - a[1]
+    length2 = dx * dx + dy * dy
+    f = min(1.0, max(0.0, ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / length2)) if length2 > 0 else 0.0
+    return math.hypot(p[0] - (a[0] + f * dx), p[1] - (a[1] + f * dy))
+
+
+def distance_to_path(path, s, p):  # to the polyline of the points within 1 mm of planned path length, one more each side
+    ss = [point[0] for point in path]
+    lo = max(0, bisect.bisect_left(ss, s - 1.0) - 1)
+    hi = min(len(path), bisect.bisect_right(ss, s + 1.0) + 1)
+    best = math.hypot(p[0] - path[lo][1][0], p[1] - path[lo][1][1])
+    for i in range(lo, hi - 1):
+        best = min(best, to_segment(p, path[i][1], path[i + 1][1]))
+    return best
 
 
 routes = []
@@ -149,8 +156,7 @@ largest = 0.0
 for a, b in ((routes[0], routes[1]), (routes[1], routes[0])):
     for stretch_a, stretch_b in zip(a, b):
         for s, p in stretch_a:
-            q = at(stretch_b, s)
-            largest = max(largest, math.hypot(p[0] - q[0], p[1] - q[1]) * 1e3)
+            largest = max(largest, distance_to_path(stretch_b, s, p) * 1e3)
 with open(os.path.join(compare, "compare.json")) as f:
     summary = json.load(f)
 print("compare.json: %s; recomputed %.4f um" % (summary["largest_difference_um"], largest))
