@@ -36,7 +36,6 @@ std::string command_line(const ConfigArgs& a) {
   std::string text = "stiffpath linuxcnc config --robot " + a.robot;
   if (!a.request.model.empty()) text += " --model " + a.request.model;
   if (!a.request.method.empty()) text += " --method " + a.request.method;
-  if (a.request.force) text += " --force-model";
   text += fmt::format(" --accel {} --max-velocity-mm-s {:g} --servo-period-ns {} --s-max {:g}", a.accel, a.max_velocity_mm_s,
                       a.servo_period_ns, a.s_max);
   if (!a.workspace_mm.empty()) text += fmt::format(" --workspace-mm {:g}", fmt::join(a.workspace_mm, ","));
@@ -88,6 +87,10 @@ Machine check(const ConfigArgs& a, std::unique_ptr<compliance::LoadedModel>& loa
   m.robot = load_robot_flag(a.robot);
   const auto& robot = m.robot;
   m.robot_setting = robot.preset ? robot.name : fs::absolute(robot.file.path).lexically_normal().string();
+  if (a.request.force) {
+    throw Error("--force-model: a configuration cannot carry it (stiffpathcomp and stiffpath run would refuse a model "
+                "fitted for another geometry); fit one for this robot with `stiffpath fit --robot ...`");
+  }
   loaded = std::make_unique<compliance::LoadedModel>(compliance::load_robot_model(robot, a.request));
   const bool builtin = !a.request.model.empty() && compliance::is_builtin_model(a.request.model);
   m.model_setting = builtin ? a.request.model : kModelName;
@@ -278,7 +281,7 @@ void write_config(const ConfigArgs& a) {
 void add_config_command(CLI::App& linuxcnc) {
   auto a = std::make_shared<ConfigArgs>();
   auto* cmd = linuxcnc.add_subcommand("config", "Write a LinuxCNC configuration (INI, HAL, tool table) for a robot, simulated drives");
-  add_robot_flag(cmd, a->robot)->required();
+  add_robot_flag(cmd, a->robot)->required()->description("Robot: a preset (oc-gu, oc-gl, sc-gu, sc-gl) or a robot file");
   add_model_flags(cmd, a->request);
   cmd->add_option("-o,--output", a->output, "The configuration's folder (new; written atomically)")->required();
   cmd->add_option("--accel", a->accel, "Acceleration limit of X and Y, e.g. 2g or 19.6 (m/s^2)")->capture_default_str();

@@ -13,6 +13,7 @@ import re
 import shutil
 import subprocess
 import sys
+import tempfile
 
 from fivebar import FiveBar
 from linuxcnc_checks import Checks, check_laser_edges, read_joint_file, read_record, stretches
@@ -44,6 +45,17 @@ EXPECTED = [((-40, 180), (30, 240), 0.6), ((-30, 240), (0, 220), 1.0), ((10, 230
 
 shutil.rmtree(work, ignore_errors=True)
 os.makedirs(work)
+if os.getuid() == 0:
+    # LinuxCNC runs as another user, who must reach the work folder and read the robot file: a checkout or build
+    # tree under /root is private, so both go to a folder of /tmp (the robot file with its compliance table).
+    work = tempfile.mkdtemp(prefix="stiffpath-own-robot-")
+    os.chmod(work, 0o755)
+    robot_dir = os.path.join(work, "robot")
+    os.makedirs(robot_dir)
+    for name in os.listdir(os.path.dirname(robot_file)):
+        if name.endswith((".json", ".csv")):
+            shutil.copy2(os.path.join(os.path.dirname(robot_file), name), robot_dir)
+    robot_file = os.path.join(robot_dir, os.path.basename(robot_file))
 config, job = os.path.join(work, "config"), os.path.join(work, "laser_edges.ngc")
 with open(job, "w") as f:
     f.write(JOB)
