@@ -13,7 +13,7 @@
 namespace stiffpath::simulation {
 
 //! Bumped whenever fit_structural_model can give another answer for the same input; part of every key.
-inline constexpr int kStructuralFitVersion = 1;
+inline constexpr int kStructuralFitVersion = 2;
 
 //! SHA-256 of what the fit reads: kStructuralFitVersion, the robot's geometry (its hash and the exact lengths and
 //! actuator positions), its singularity margin and joints' lower limits (the kinematics the fit solves) and every
