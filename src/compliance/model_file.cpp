@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <numbers>
 
 #include "stiffpath/compliance/grid_model.hpp"
 #include "stiffpath/compliance/physical_model.hpp"
@@ -203,6 +204,10 @@ kinematics::FiveBarGeometry recorded_geometry(const core::JsonObject& robot) {
   if (elbows.size() != 2 || !elbows[0].is_number() || !elbows[1].is_number()) g.fail("elbows", "must be [+-1, +-1]");
   geometry.elbows = {elbows[0].get<double>() > 0 ? 1 : -1, elbows[1].get<double>() > 0 ? 1 : -1};
   geometry.assembly = g.sign("assembly");
+  if (g.has("joint_zero_offsets_deg")) {
+    const auto [d1, d2] = g.pair("joint_zero_offsets_deg");
+    geometry.joint_zero_rad = {d1 * std::numbers::pi / 180.0, d2 * std::numbers::pi / 180.0};
+  }
   if (robot.string("geometry_sha256") != kinematics::geometry_hash(geometry)) {
     robot.fail("geometry_sha256", "does not match the geometry recorded beside it (was the file edited?)");
   }
