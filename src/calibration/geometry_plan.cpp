@@ -104,6 +104,7 @@ GeometryPlan plan_geometry_poses(const kinematics::Robot& robot, const GeometryP
   const double area = (box.x_max - box.x_min) * (box.y_max - box.y_min);
   // A first lattice finds the reachable share of the box; the second has about `candidates` reachable points.
   double step = std::sqrt(area / std::max(settings.candidates, 16));
+  const kinematics::FiveBar five_bar = robot.five_bar();
   std::vector<kinematics::Vec2> points, q;
   for (int pass = 0; pass < 2; ++pass) {
     points.clear();
@@ -112,8 +113,10 @@ GeometryPlan plan_geometry_poses(const kinematics::Robot& robot, const GeometryP
       for (double y = box.y_min + step / 2; y < box.y_max; y += step) {
         const kinematics::Vec2 p(x, y);
         if (!robot.refusal(p).empty()) continue;
+        const kinematics::Vec2 qp = robot.inverse(p);
+        if (!(five_bar.condition_number(qp) <= settings.max_condition_number)) continue;
         points.push_back(p);
-        q.push_back(robot.inverse(p));
+        q.push_back(qp);
       }
     }
     if (pass == 0 && !points.empty()) {
@@ -121,11 +124,13 @@ GeometryPlan plan_geometry_poses(const kinematics::Robot& robot, const GeometryP
     }
   }
   if (static_cast<int>(points.size()) < settings.poses) {
-    throw Error(fmt::format("geometry plan: the robot reaches only {} candidate points{} (lattice {:.2f} mm), fewer than "
-                            "the {} poses asked for",
-                            points.size(), settings.region ? " in the region" : "", step * 1e3, settings.poses));
+    throw Error(fmt::format("geometry plan: the robot reaches only {} candidate points{} with a condition number of at "
+                            "most {:g} (lattice {:.2f} mm), fewer than the {} poses asked for",
+                            points.size(), settings.region ? " in the region" : "", settings.max_condition_number,
+                            step * 1e3, settings.poses));
   }
   plan.reachable = points;
+  plan.max_condition_number = std::min(settings.max_condition_number, robot.margin.max_condition_number);
   plan.lattice_step_m = step;
   plan.min_separation_m = settings.min_separation_fraction * std::sqrt(static_cast<double>(points.size()) * step * step / settings.poses);
 
@@ -228,8 +233,7 @@ GeometryPlan plan_geometry_poses(const kinematics::Robot& robot, const GeometryP
     at = points[chosen[next]];
     order.push_back(chosen[next]);
   }
-  const kinematics::FiveBar fb = robot.five_bar();
-  for (const std::size_t c : order) plan.poses.push_back({q[c], points[c], fb.condition_number(q[c])});
+  for (const std::size_t c : order) plan.poses.push_back({q[c], points[c], five_bar.condition_number(q[c])});
   return plan;
 }
 

@@ -172,7 +172,7 @@ TEST(GeometryFit, PlannedPosesWithTheArmsNoiseMeetTheTargets) {
     std::printf("%s: %d of %d identifiable parameters outside 3 sigma (largest |error|/sigma %.2f, rms %.2f)\n", name,
                 outside_3sigma, checks, worst_z, rms_z);
     // 3σ holds 99.7 % of a normal error (σ estimated from 47 degrees of freedom: 99.6 %); over 300 seeds of the
-    // planar case 16 of 3000 fell outside (0.5 %), with |error|/σ of RMS 0.95–1.10 per parameter. Of these
+    // planar case 13 of 3000 fell outside (0.4 %), with |error|/σ of RMS 0.94–1.11 per parameter. Of these
     // ~90, at most 2 may fall outside, and the errors' RMS in units of their σ must be about 1.
     EXPECT_LE(outside_3sigma, 2) << name;
     EXPECT_GT(rms_z, 0.75) << name;

@@ -22,9 +22,12 @@ struct GeometryPlanSettings {
   std::optional<compliance::GridBounds> region;
   //! Candidate end points: a square lattice of about this many points over the reachable region.
   int candidates = 4000;
+  //! Only poses where J's condition number is at most this (and within the robot's own margin): away from the
+  //! singularities, where the tool point moves most per error of a part and the robot is least stiff.
+  double max_condition_number = 4.0;
   //! No two poses closer than this fraction of √(reachable area / poses): well spread, not stacked on the
   //! few most informative spots.
-  double min_separation_fraction = 0.5;
+  double min_separation_fraction = 0.8;
   //! Passes of pose exchange (Fedorov) after the greedy choice; each swaps a pose for a better candidate.
   int exchange_passes = 3;
   GeometryFitSettings fit;  //!< the parameters' scales and the instrument's noise, as the fit will use them
@@ -44,6 +47,7 @@ struct GeometryPlan {
   std::vector<kinematics::Vec2> reachable;  //!< the candidate lattice (for the picture)
   double lattice_step_m = 0.0;
   double min_separation_m = 0.0;
+  double max_condition_number = 0.0;  //!< the candidates' limit (the settings' or the robot's own, the smaller)
   std::vector<std::string> held;  //!< parameters the readings cannot separate (held at the robot file's values)
   //! Each parameter's σ predicted for planar readings with the settings' noise (SI; 0 when held or not applicable).
   std::vector<double> predicted_sigma;
@@ -51,7 +55,8 @@ struct GeometryPlan {
 };
 
 //! Chooses `settings.poses` poses that determine the geometry best: candidates on a lattice over the robot's
-//! reachable region (Robot::refusal: reach, singularity margin, joint limits), the parameters the readings
+//! reachable region (Robot::refusal: reach, singularity margin, joint limits; condition number ≤
+//! max_condition_number), the parameters the readings
 //! cannot separate held as fit_geometry holds them, then greedy D-optimal selection (each step adds the
 //! candidate that most increases det(Σ JᵢᵀJᵢ) of the scaled Jacobian, kept min_separation apart) and pose
 //! exchange. Deterministic. Throws stiffpath::Error when the region holds fewer candidates than poses.
