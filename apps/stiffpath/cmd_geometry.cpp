@@ -1,5 +1,6 @@
 // `stiffpath geometry fit|plan|simulate`: calibrate a robot's geometry from instrument readings, plan the poses, rehearse.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <Eigen/Geometry>
 
