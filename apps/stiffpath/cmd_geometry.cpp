@@ -220,7 +220,10 @@ void plan(const PlanOptions& o) {
              result.poses.size(), robot.name, result.reachable.size(), result.lattice_step_m * 1e3,
              result.min_separation_m * 1e3, fmt::join(result.held, ", "));
   fmt::print("predicted sigma with {:.1f} um per coordinate, planar readings:", o.tolerances.noise_um);
-  for (const auto& [name, v] : sigma.items()) fmt::print(" {} {}", name, v.get<double>());
+  for (int k = 0; k < calibration::kRobotParameters; ++k) {
+    const double v = result.predicted_sigma[static_cast<std::size_t>(k)];
+    if (v > 0.0) fmt::print(" {} {:.4f}", calibration::parameter_name(k), edge(k, v));
+  }
   fmt::print("\nwrote {}{}\n", o.output, o.plot_dir.empty() ? "" : " and " + (std::filesystem::path(o.plot_dir) / "geometry_plan.svg").string());
 }
 
