@@ -38,7 +38,10 @@ nlohmann::json to_json(const compliance::CvReport& r, const std::string& favoure
     for (const auto& [name, score] : scores) {
       if (name == m.method) common = score;
     }
-    methods.push_back({{"method", m.method},
+    nlohmann::json band = {{"cells", m.band_cells}, {"inside", m.inside_band}, {"mean_half_width_um", tidy(m.mean_band_um)},
+                           {"fraction", m.band_cells > 0 ? tidy(static_cast<double>(m.inside_band) / m.band_cells) : 0.0}};
+    methods.push_back({{"band_95", band},
+                       {"method", m.method},
                        {"description", m.description},
                        {"predicted_points", m.predicted},
                        {"mean_error_um", tidy(m.mean_um)},
@@ -71,7 +74,7 @@ void run(const CvOptions& o) {
   if (rows.rows.empty()) throw Error(SourceLocation{table.source}, "no rows with mechanism '" + rows_name + "'");
   const auto convention = compliance::parse_force_convention(o.forces);
   auto report = compliance::cross_validate(compliance::group_by_point(rows, convention), robot.geometry, table.source,
-                                           compliance::parse_zero_force(o.zero_force));
+                                           compliance::parse_zero_force(o.zero_force), true);
   report.rows = rows_name;
   report.robot = robot.name;
   report.convention = convention;
@@ -83,12 +86,15 @@ void run(const CvOptions& o) {
   }
   fmt::print("leave-one-out cross-validation, robot {}, {}{}: error = mean |dx|,|dy| error at the highest load (um)\n",
              robot.name, table.source, rows_name.empty() ? "" : " rows " + rows_name);
-  fmt::print("{:<16} {:>9} {:>14} {:>10} {:>8} {:>14}\n", "method", "interior", "all predicted", "max", "points",
-             "common points");
+  fmt::print("{:<16} {:>9} {:>14} {:>10} {:>8} {:>14} {:>16} {:>11}\n", "method", "interior", "all predicted", "max", "points",
+             "common points", "in 95 % band", "band +-um");
   for (std::size_t k = 0; k < report.methods.size(); ++k) {
     const auto& m = report.methods[k];
-    fmt::print("{:<16} {:>9.1f} {:>14.1f} {:>10.1f} {:>8} {:>14.1f}\n", m.method, m.interior_mean_um, m.mean_um,
-               m.max_um, m.predicted, scores[k].second);
+    fmt::print("{:<16} {:>9.1f} {:>14.1f} {:>10.1f} {:>8} {:>14.1f} {:>16} {:>11}\n", m.method, m.interior_mean_um, m.mean_um,
+               m.max_um, m.predicted, scores[k].second,
+               m.band_cells > 0 ? fmt::format("{}/{} {:.0f} %", m.inside_band, m.band_cells, 100.0 * m.inside_band / m.band_cells)
+                                : std::string("-"),
+               m.band_cells > 0 ? fmt::format("{:.1f}", m.mean_band_um) : std::string("-"));
   }
   for (const auto& s : report.skipped) fmt::print("{:<16} could not run: {}\n", s.method, s.reason);
   const auto& named = robot.compliance;
@@ -96,7 +102,8 @@ void run(const CvOptions& o) {
                            : !named.method.empty() ? fmt::format("; robot {} names the method {} in its file", robot.name, named.method)
                                                    : fmt::format("; robot {} uses it", robot.name);
   fmt::print("interior = points strictly inside the points' bounding rectangle; common points = those every method "
-             "predicts\nfavoured: {} (what fit chooses without --method{})\n",
+             "predicts;\nin 95 % band = held-out dx, dy cells within the 95 % band the method states for a measurement, "
+             "learnt from the other points;\nband +-um = its mean half-width\nfavoured: {} (what fit chooses without --method{})\n",
              favoured, note);
 }
 }  // namespace

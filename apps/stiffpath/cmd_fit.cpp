@@ -1,5 +1,6 @@
 // `stiffpath fit`: fit a compliance model to a robot's displacement table and write the model file.
 #include <fmt/format.h>
+#include <cmath>
 #include <memory>
 
 #include "commands.hpp"
@@ -35,6 +36,12 @@ void run(const FitOptions& o) {
   auto fitted = compliance::fit_model(table, rows, o.method, compliance::parse_force_convention(o.forces), robot);
   fitted.model->set_outside_policy(compliance::parse_outside_policy(o.outside));
   fitted.model->set_zero_force(compliance::parse_zero_force(o.zero_force));
+  std::string uncertainty_note;
+  try {
+    compliance::add_uncertainty(fitted);
+  } catch (const Error& e) {
+    uncertainty_note = "no prediction uncertainty: " + e.message();
+  }
   const nlohmann::json doc = compliance::model_to_json(*fitted.model, fitted.provenance);
   if (!o.output.empty()) compliance::save_model(o.output, *fitted.model, fitted.provenance);
   if (o.json) {
@@ -66,6 +73,16 @@ void run(const FitOptions& o) {
     }
   } else {
     fmt::print("D(p) coefficients (um/N): {}\nfit: {}\n", doc["D_um_per_N"].dump(), doc["stats"].dump());
+  }
+  if (fitted.provenance.uncertainty) {
+    const auto& u = *fitted.provenance.uncertainty;
+    fmt::print("prediction uncertainty ({} basis, learnt from {} leave-one-out predictions; 95 % band = {:.2f} sigma): "
+               "C entries' floor {:.3f} um/N rms, a measurement's scatter about C.F {:.1f} / {:.1f} um (x / y)\n",
+               compliance::to_string(u.basis), u.held_out, u.band_factor(),
+               std::sqrt((u.floor_m2_per_N2[0] + u.floor_m2_per_N2[1] + u.floor_m2_per_N2[2] + u.floor_m2_per_N2[3]) / 4) * 1e6,
+               u.campaign_sigma_m.x() * 1e6, u.campaign_sigma_m.y() * 1e6);
+  } else {
+    fmt::print("{}\n", uncertainty_note);
   }
   if (!o.output.empty()) fmt::print("wrote {}\n", o.output);
 }

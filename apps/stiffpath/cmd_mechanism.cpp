@@ -32,6 +32,10 @@ void show(const RobotOptions& o) {
              units::m_to_mm(g.distal_m[1]));
   fmt::print("  working mode         elbows [{:+d}, {:+d}], assembly {:+d}{}\n", g.elbows[0], g.elbows[1], g.assembly,
              g.is_thesis_case() ? " (the thesis's parallelogram five-bar: eqs. 2.1-2.2)" : "");
+  if (g.joint_zero_rad[0] != 0.0 || g.joint_zero_rad[1] != 0.0) {
+    fmt::print("  joint zero offsets   theta1 {:+.4f} deg, theta2 {:+.4f} deg (link angle = joint reading + offset)\n",
+               units::rad_to_deg(g.joint_zero_rad[0]), units::rad_to_deg(g.joint_zero_rad[1]));
+  }
   fmt::print("  geometry sha256      {}\n", r.geometry_hash());
   fmt::print("  moving mass          {:.3f} kg\n", r.moving_mass_kg);
   fmt::print("  centre of gravity    {} at {:.1f} mm above G\n", r.cg_label, units::m_to_mm(r.cg_height_m));

@@ -1,5 +1,6 @@
 // `stiffpath predict`: the deflection a robot's compliance model predicts at a point under a force.
 #include <fmt/format.h>
+#include <cmath>
 #include <memory>
 
 #include "bounded.hpp"
@@ -51,6 +52,27 @@ void run(const PredictOptions& o) {
                         {"dy_um", tidy(d.y() * 1e6)},
                         {"inside_grid", model.inside(p)},
                         {"C_um_per_N", {{tidy(c(0, 0)), tidy(c(0, 1))}, {tidy(c(1, 0)), tidy(c(1, 1))}}}};
+  // The prediction's uncertainty: the model file's, or learnt now from the table the model was fitted to.
+  std::string no_band;
+  try {
+    compliance::add_uncertainty(loaded);
+  } catch (const Error& e) {
+    no_band = e.message();
+  }
+  if (loaded.provenance.uncertainty) {
+    const auto& u = *loaded.provenance.uncertainty;
+    const compliance::Mat2 cov = u.deflection_covariance(p, F), meas = u.measurement_covariance(p, F);
+    const double k = u.band_factor();
+    out["dx_sigma_um"] = tidy(std::sqrt(cov(0, 0)) * 1e6);
+    out["dy_sigma_um"] = tidy(std::sqrt(cov(1, 1)) * 1e6);
+    out["dx_band_95_um"] = tidy(k * std::sqrt(cov(0, 0)) * 1e6);
+    out["dy_band_95_um"] = tidy(k * std::sqrt(cov(1, 1)) * 1e6);
+    out["measured_dx_band_95_um"] = tidy(k * std::sqrt(meas(0, 0)) * 1e6);
+    out["measured_dy_band_95_um"] = tidy(k * std::sqrt(meas(1, 1)) * 1e6);
+    out["uncertainty_basis"] = compliance::to_string(u.basis);
+  } else {
+    out["uncertainty"] = "unknown: " + no_band;
+  }
   if (o.tool) {
     const core::DataRef angles_ref = !o.angles.empty() ? table_ref(o.angles) : robot.compliance.table;
     if (angles_ref.empty()) throw Error("--tool-below-g-mm needs a table with rx_deg, ry_deg: give --angles");
@@ -73,6 +95,14 @@ void run(const PredictOptions& o) {
              o.x_mm, o.y_mm, o.fx_n, o.fy_n,
              model.inside(p) ? "" : fmt::format(" [outside the measured region: {}]", compliance::to_string(model.outside_policy())));
   fmt::print("  dx = {:.2f} um, dy = {:.2f} um at G\n", d.x() * 1e6, d.y() * 1e6);
+  if (out.contains("dx_band_95_um")) {
+    fmt::print("  95 % band of the deflection: dx +- {:.2f} um, dy +- {:.2f} um; of a measurement of it (the campaign's "
+               "scatter added): +- {:.2f} um, +- {:.2f} um\n",
+               out["dx_band_95_um"].get<double>(), out["dy_band_95_um"].get<double>(),
+               out["measured_dx_band_95_um"].get<double>(), out["measured_dy_band_95_um"].get<double>());
+  } else {
+    fmt::print("  uncertainty unknown: {}\n", no_band);
+  }
   fmt::print("  C = [{:.4f} {:.4f}; {:.4f} {:.4f}] um/N\n", c(0, 0), c(0, 1), c(1, 0), c(1, 1));
   if (o.tool) {
     fmt::print("  tool point {} mm below G: dx = {:.2f} um, dy = {:.2f} um (changes the prediction by {:.2f} um)\n",

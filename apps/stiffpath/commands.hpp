@@ -18,6 +18,7 @@ void add_plan_command(CLI::App& app);
 void add_run_command(CLI::App& app);
 void add_measure_command(CLI::App& app);
 void add_campaign_command(CLI::App& app);
+void add_geometry_command(CLI::App& app);
 void add_data_command(CLI::App& app);
 void add_repeatability_command(CLI::App& app);
 void add_scan_command(CLI::App& app);

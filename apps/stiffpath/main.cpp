@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   stiffpath::cli::add_run_command(app);
   stiffpath::cli::add_measure_command(app);
   stiffpath::cli::add_campaign_command(app);
+  stiffpath::cli::add_geometry_command(app);
   stiffpath::cli::add_data_command(app);
   stiffpath::cli::add_repeatability_command(app);
   stiffpath::cli::add_vision_commands(app);  // scan, render-scan: run by stiffpath-vision

@@ -2,9 +2,12 @@
 #include "stiffpath/compliance/cross_validation.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <memory>
+#include <fmt/format.h>
 
 #include "stiffpath/core/error.hpp"
 
@@ -12,6 +15,7 @@
 #include "stiffpath/compliance/grid_model.hpp"
 #include "stiffpath/compliance/physical_model.hpp"
 #include "stiffpath/compliance/physical_spline_model.hpp"
+#include "stiffpath/compliance/uncertainty.hpp"
 
 namespace stiffpath::compliance {
 
@@ -19,6 +23,7 @@ namespace {
 struct Prediction {
   Mat2 compliance;
   Vec2 offset;
+  std::optional<PredictionUncertainty> uncertainty;  // learnt from the other points only
 };
 using Predictor = std::function<std::optional<Prediction>(std::size_t held_out)>;
 
@@ -39,7 +44,7 @@ std::vector<const PointSample*> reference_samples(const PointSamples& point) {
 
 CvMethod evaluate(const std::string& name, const std::string& description, const std::vector<PointSamples>& points,
                   const std::vector<bool>& interior, ZeroForce zero_force, const Predictor& predict) {
-  CvMethod m{name, description, {}, 0, 0.0, 0.0, 0.0};
+  CvMethod m{name, description, {}, 0, 0.0, 0.0, 0.0, 0, 0, 0.0};
   double sum = 0.0, interior_sum = 0.0;
   int interior_count = 0;
   for (std::size_t k = 0; k < points.size(); ++k) {
@@ -66,7 +71,19 @@ CvMethod evaluate(const std::string& name, const std::string& description, const
         }
         vec_sum += err.norm();
         ++loads;
-        r.loads.push_back({s->force_N, s->dx_m, s->dy_m, d});
+        Vec2 band = Vec2::Zero();
+        if (pred->uncertainty) {
+          const Mat2 cov = pred->uncertainty->measurement_covariance(points[k].position, s->force_N);
+          band = pred->uncertainty->band_factor() * Vec2(std::sqrt(cov(0, 0)), std::sqrt(cov(1, 1)));
+          const std::optional<double>* measured[2] = {&s->dx_m, &s->dy_m};
+          for (int a = 0; a < 2; ++a) {
+            if (!*measured[a]) continue;
+            ++m.band_cells;
+            m.inside_band += std::abs(err[a]) <= band[a] ? 1 : 0;
+            m.mean_band_um += band[a] * 1e6;
+          }
+        }
+        r.loads.push_back({s->force_N, s->dx_m, s->dy_m, d, band});
       }
       if (components > 0) {
         r.predicted = true;
@@ -84,18 +101,22 @@ CvMethod evaluate(const std::string& name, const std::string& description, const
     m.points.push_back(r);
   }
   m.mean_um = m.predicted > 0 ? sum / m.predicted : 0.0;
+  if (m.band_cells > 0) m.mean_band_um /= m.band_cells;
   m.interior_mean_um = interior_count > 0 ? interior_sum / interior_count : 0.0;
   return m;
 }
 
-// Interpolates a held-out node linearly from its neighbours along x, else along y (nullopt at corners).
-std::optional<Prediction> from_neighbours(const Grid& grid, const std::vector<Prediction>& by_node, int node) {
+// Interpolates a held-out node linearly from its neighbours along x, else along y (nullopt at corners); `used`
+// receives the two neighbours' node indices.
+std::optional<Prediction> from_neighbours(const Grid& grid, const std::vector<Prediction>& by_node, int node,
+                                          std::array<int, 2>* used = nullptr) {
   const int ny = static_cast<int>(grid.ys.size());
   const int i = node / ny, j = node % ny;
   const auto blend = [&](int a, int b, double t) {
     const Prediction& pa = by_node[static_cast<std::size_t>(a)];
     const Prediction& pb = by_node[static_cast<std::size_t>(b)];
-    return Prediction{(1 - t) * pa.compliance + t * pb.compliance, (1 - t) * pa.offset + t * pb.offset};
+    if (used) *used = {a, b};
+    return Prediction{(1 - t) * pa.compliance + t * pb.compliance, (1 - t) * pa.offset + t * pb.offset, std::nullopt};
   };
   if (i > 0 && i + 1 < static_cast<int>(grid.xs.size())) {
     const auto ui = static_cast<std::size_t>(i);
@@ -109,10 +130,19 @@ std::optional<Prediction> from_neighbours(const Grid& grid, const std::vector<Pr
   }
   return std::nullopt;
 }
+
+// A physical method's model fitted to `points`.
+std::unique_ptr<Model> fit_physical_method(const std::string& method, const std::vector<PointSamples>& points,
+                                           const kinematics::FiveBarGeometry& geometry, const std::string& source) {
+  if (method == "physical-spline") return fit_physical_spline_model(points, geometry, source, false);
+  const int order = method == "physical" ? 1 : method == "physical-0" ? 0 : method == "physical-2" ? 2 : -1;
+  if (order < 0) throw Error(fmt::format("unknown compliance method '{}'", method));
+  return fit_physical_model(points, geometry, order, source, false);
+}
 }  // namespace
 
 CvReport cross_validate(const std::vector<PointSamples>& points, const kinematics::FiveBarGeometry& geometry,
-                        const std::string& source, ZeroForce zero_force) {
+                        const std::string& source, ZeroForce zero_force, bool with_uncertainty) {
   CvReport report;
   report.source = source;
   report.zero_force = zero_force;
@@ -146,9 +176,9 @@ CvReport cross_validate(const std::vector<PointSamples>& points, const kinematic
     try {
       for (std::size_t k = 0; k < points.size(); ++k) {
         const PointFit f = fit_point(points[k], source);
-        bilinear[static_cast<std::size_t>(node_of[k])] = {f.compliance(), f.offset()};
+        bilinear[static_cast<std::size_t>(node_of[k])] = {f.compliance(), f.offset(), std::nullopt};
         const GridNode n = fit_symmetric_node(points[k], source);
-        symmetric[static_cast<std::size_t>(node_of[k])] = {n.compliance, n.offset};
+        symmetric[static_cast<std::size_t>(node_of[k])] = {n.compliance, n.offset, std::nullopt};
       }
     } catch (const Error& e) {
       grid.reset();
@@ -156,14 +186,33 @@ CvReport cross_validate(const std::vector<PointSamples>& points, const kinematic
     }
   }
   if (grid) {
-    report.methods.push_back(evaluate("bilinear", "thesis eqs. 4.8-4.12: per-point fits, bilinear between points",
-                                      points, interior, zero_force, [&](std::size_t k) {
-                                        return from_neighbours(*grid, bilinear, node_of[k]);
-                                      }));
-    report.methods.push_back(evaluate("symmetric", "per-point fit with C = C^T > 0 (reciprocity), bilinear between",
-                                      points, interior, zero_force, [&](std::size_t k) {
-                                        return from_neighbours(*grid, symmetric, node_of[k]);
-                                      }));
+    // The band of a held-out node: the grid method's uncertainty learnt from the other nodes whose neighbour
+    // predictions do not use it.
+    const auto grid_method = [&](const char* name, const char* description, const std::vector<Prediction>& by_node) {
+      std::vector<LooCompliance> loo;
+      if (with_uncertainty) loo = leave_one_out_compliance(name, points, geometry, source);
+      report.methods.push_back(evaluate(name, description, points, interior, zero_force, [&](std::size_t k) {
+        auto p = from_neighbours(*grid, by_node, node_of[k]);
+        if (p && with_uncertainty) {
+          std::vector<PointSamples> rest;
+          std::vector<LooResidual> residuals;
+          for (std::size_t j = 0; j < points.size(); ++j) {
+            if (j == k) continue;
+            rest.push_back(points[j]);
+            const auto& l = loo[j];
+            if (!l.predicted || std::find(l.used.begin(), l.used.end(), k) != l.used.end()) continue;
+            residuals.push_back({points[j].position, *l.predicted - fit_point(points[j], source).compliance()});
+          }
+          if (!residuals.empty() && rest.size() >= 4) {
+            p->uncertainty = estimate_uncertainty(rest, residuals, UncertaintyBasis::interpolation,
+                                                  std::string(name) == "symmetric", source);
+          }
+        }
+        return p;
+      }));
+    };
+    grid_method("bilinear", "thesis eqs. 4.8-4.12: per-point fits, bilinear between points", bilinear);
+    grid_method("symmetric", "per-point fit with C = C^T > 0 (reciprocity), bilinear between", symmetric);
   }
   // The model-based methods: refitted on every point but k, asked at k (extrapolating beyond the rest).
   const auto refit_method = [&](const std::string& name, const std::string& description, auto fit) {
@@ -175,7 +224,9 @@ CvReport cross_validate(const std::vector<PointSamples>& points, const kinematic
         }
         const auto model = fit(rest);
         model->set_outside_policy(OutsidePolicy::extrapolate);
-        return std::optional<Prediction>(Prediction{model->compliance(points[k].position), Vec2::Zero()});
+        Prediction p{model->compliance(points[k].position), Vec2::Zero(), std::nullopt};
+        if (with_uncertainty) p.uncertainty = estimate_method_uncertainty(name, rest, geometry, source);
+        return std::optional<Prediction>(p);
       }));
     } catch (const Error& e) {
       report.skipped.push_back({name, e.message()});
@@ -184,11 +235,53 @@ CvReport cross_validate(const std::vector<PointSamples>& points, const kinematic
   for (int order = 0; order <= 2; ++order) {
     refit_method(order == 1 ? "physical" : "physical-" + std::to_string(order),
                  "five-bar statics C = U^-T D(p) U^-1, D polynomial of order " + std::to_string(order),
-                 [&](const std::vector<PointSamples>& rest) { return fit_physical_model(rest, geometry, order, source); });
+                 [&](const std::vector<PointSamples>& rest) { return fit_physical_model(rest, geometry, order, source, false); });
   }
   refit_method("physical-spline", "physical (order 1) + thin-plate smoothing spline of its residual at the points",
                [&](const std::vector<PointSamples>& rest) { return fit_physical_spline_model(rest, geometry, source, false); });
   return report;
+}
+
+std::vector<LooCompliance> leave_one_out_compliance(const std::string& method, const std::vector<PointSamples>& points,
+                                                    const kinematics::FiveBarGeometry& geometry, const std::string& source) {
+  std::vector<LooCompliance> out(points.size());
+  if (method == "bilinear" || method == "symmetric") {
+    std::vector<Vec2> positions;
+    for (const auto& p : points) positions.push_back(p.position);
+    std::vector<int> node_of;
+    const Grid grid = Grid::from_positions(positions, node_of, source);
+    std::vector<Prediction> by_node(points.size());
+    std::vector<std::size_t> point_of(points.size());
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const auto node = static_cast<std::size_t>(node_of[k]);
+      point_of[node] = k;
+      if (method == "bilinear") {
+        const PointFit f = fit_point(points[k], source);
+        by_node[node] = {f.compliance(), f.offset(), std::nullopt};
+      } else {
+        const GridNode n = fit_symmetric_node(points[k], source);
+        by_node[node] = {n.compliance, n.offset, std::nullopt};
+      }
+    }
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      std::array<int, 2> used{};
+      if (const auto p = from_neighbours(grid, by_node, node_of[k], &used)) {
+        out[k].predicted = p->compliance;
+        out[k].used = {point_of[static_cast<std::size_t>(used[0])], point_of[static_cast<std::size_t>(used[1])]};
+      }
+    }
+    return out;
+  }
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    std::vector<PointSamples> rest;
+    for (std::size_t m = 0; m < points.size(); ++m) {
+      if (m != k) rest.push_back(points[m]);
+    }
+    auto model = fit_physical_method(method, rest, geometry, source);
+    model->set_outside_policy(OutsidePolicy::extrapolate);
+    out[k].predicted = model->compliance(points[k].position);
+  }
+  return out;
 }
 
 std::string favoured_method(const CvReport& report, std::vector<std::pair<std::string, double>>* scores) {

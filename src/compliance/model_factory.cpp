@@ -33,7 +33,7 @@ LoadedModel fit_model(const measurement::DisplacementTable& table, const std::st
   }
   const auto points = group_by_point(selected, convention);
   LoadedModel out;
-  out.provenance = {table.source, table.sha256, rows, convention, robot.name, robot.geometry, "named", nullptr};
+  out.provenance = {table.source, table.sha256, rows, convention, robot.name, robot.geometry, "named", nullptr, std::nullopt};
   std::string chosen = method;
   if (method.empty() || method == "auto") {
     const CvReport report = cross_validate(points, robot.geometry, table.source);
@@ -61,6 +61,20 @@ LoadedModel fit_model(const measurement::DisplacementTable& table, const std::st
   }
   out.label = fmt::format("{} fitted to {}{}", chosen, table.source, rows.empty() ? "" : " rows " + rows);
   return out;
+}
+
+void add_uncertainty(LoadedModel& loaded) {
+  if (loaded.provenance.uncertainty) return;
+  const Provenance& p = loaded.provenance;
+  if (!p.geometry) throw Error(SourceLocation{loaded.label}, "the model records no robot geometry to refit with");
+  const auto table = measurement::load_displacement_table(core::parse_data_ref(p.source)).filter(p.rows);
+  // The method as fitted: a model file's "physical" with its order, as the method name fit_model uses.
+  std::string method = loaded.model->method();
+  if (const auto* physical = dynamic_cast<const PhysicalModel*>(loaded.model.get()); physical && physical->order() != 1) {
+    method = "physical-" + std::to_string(physical->order());
+  }
+  loaded.provenance.uncertainty =
+      estimate_method_uncertainty(method, group_by_point(table, p.convention), *p.geometry, table.source);
 }
 
 bool is_builtin_model(const std::string& name) { return name.rfind("thesis-", 0) == 0; }

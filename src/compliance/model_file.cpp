@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <numbers>
 
 #include "stiffpath/compliance/grid_model.hpp"
 #include "stiffpath/compliance/physical_model.hpp"
@@ -42,6 +43,29 @@ nlohmann::json model_to_json(const Model& model, const Provenance& provenance) {
                     {"geometry_sha256", kinematics::geometry_hash(*provenance.geometry)}};
   }
   doc.update(model.parameters());
+  if (provenance.uncertainty) {
+    const PredictionUncertainty& u = *provenance.uncertainty;
+    const auto um2 = [](const std::array<double, 4>& v) {
+      return nlohmann::json::array({v[0] * 1e12, v[1] * 1e12, v[2] * 1e12, v[3] * 1e12});
+    };
+    nlohmann::json points = nlohmann::json::array();
+    if (u.field) {
+      for (const Vec2& p : u.field->nodes()) points.push_back({p.x() * 1e3, p.y() * 1e3});
+    }
+    doc["uncertainty"] = {
+        {"description", "variance of each C entry (c11, c12, c21, c22) = floor + scale * v(p), v the thin-plate kriging "
+                        "variance of the measured points; a measurement adds the campaign's scatter; 95 % band = "
+                        "Student t(degrees_of_freedom) standard deviations"},
+        {"basis", to_string(u.basis)},
+        {"symmetric", u.symmetric},
+        {"floor_um2_per_N2", um2(u.floor_m2_per_N2)},
+        {"scale_um2_per_N2", um2(u.scale_m2_per_N2)},
+        {"campaign_sigma_um", {u.campaign_sigma_m.x() * 1e6, u.campaign_sigma_m.y() * 1e6}},
+        {"held_out_points", u.held_out},
+        {"degrees_of_freedom", u.degrees_of_freedom},
+        {"smoothing", u.field ? u.field->smoothing() : 0.0},
+        {"points_mm", points}};
+  }
   return doc;
 }
 
@@ -188,6 +212,46 @@ std::unique_ptr<Model> physical_spline_model_from(const core::JsonObject& root,
                                                root.has("stats") ? root.raw()["stats"] : nlohmann::json::object());
 }
 
+// The uncertainty block: every number finite and of its sign, the points as the field's nodes.
+PredictionUncertainty uncertainty_from(const core::JsonObject& u) {
+  PredictionUncertainty out;
+  const std::string basis = u.string("basis");
+  if (basis != "interpolation" && basis != "stationary") u.fail("basis", "must be \"interpolation\" or \"stationary\"");
+  out.basis = basis == "interpolation" ? UncertaintyBasis::interpolation : UncertaintyBasis::stationary;
+  if (!u.raw().contains("symmetric") || !u.raw().at("symmetric").is_boolean()) u.fail("symmetric", "must be true or false");
+  out.symmetric = u.raw().at("symmetric").get<bool>();
+  const auto four = [&](const char* key) {
+    const auto& a = u.array(key);
+    std::array<double, 4> v{};
+    for (std::size_t c = 0; c < 4; ++c) {
+      if (a.size() != 4 || !a[c].is_number() || !(a[c].get<double>() >= 0.0) || !std::isfinite(a[c].get<double>())) {
+        u.fail(key, "must hold 4 finite variances >= 0 (c11, c12, c21, c22)");
+      }
+      v[c] = a[c].get<double>() * 1e-12;
+    }
+    return v;
+  };
+  out.floor_m2_per_N2 = four("floor_um2_per_N2");
+  out.scale_m2_per_N2 = four("scale_um2_per_N2");
+  const auto [sx, sy] = u.pair("campaign_sigma_um");
+  if (!(sx >= 0.0 && sy >= 0.0)) u.fail("campaign_sigma_um", "must be two standard deviations >= 0");
+  out.campaign_sigma_m = Vec2(sx * 1e-6, sy * 1e-6);
+  out.held_out = static_cast<int>(u.non_negative("held_out_points"));
+  const double dof = u.number("degrees_of_freedom");
+  if (!(dof >= 1.0 && dof <= 1e6 && dof == std::floor(dof))) u.fail("degrees_of_freedom", "must be a whole number >= 1");
+  out.degrees_of_freedom = static_cast<int>(dof);
+  std::vector<Vec2> points;
+  for (const auto& p : rows_of(u, "points_mm", 2, 0, 1e-3)) points.emplace_back(p[0], p[1]);
+  if (!points.empty()) {
+    try {
+      out.field.emplace(points, u.non_negative("smoothing"));
+    } catch (const Error& e) {
+      u.fail("points_mm", e.message());
+    }
+  }
+  return out;
+}
+
 // The robot block of a version-2 file: the geometry, checked against its recorded hash.
 kinematics::FiveBarGeometry recorded_geometry(const core::JsonObject& robot) {
   const core::JsonObject g = robot.object("geometry");
@@ -203,6 +267,10 @@ kinematics::FiveBarGeometry recorded_geometry(const core::JsonObject& robot) {
   if (elbows.size() != 2 || !elbows[0].is_number() || !elbows[1].is_number()) g.fail("elbows", "must be [+-1, +-1]");
   geometry.elbows = {elbows[0].get<double>() > 0 ? 1 : -1, elbows[1].get<double>() > 0 ? 1 : -1};
   geometry.assembly = g.sign("assembly");
+  if (g.has("joint_zero_offsets_deg")) {
+    const auto [d1, d2] = g.pair("joint_zero_offsets_deg");
+    geometry.joint_zero_rad = {d1 * std::numbers::pi / 180.0, d2 * std::numbers::pi / 180.0};
+  }
   if (robot.string("geometry_sha256") != kinematics::geometry_hash(geometry)) {
     robot.fail("geometry_sha256", "does not match the geometry recorded beside it (was the file edited?)");
   }
@@ -267,6 +335,7 @@ LoadedModel model_from_json(const core::JsonDocument& document) {
   out.provenance.convention = parsed(prov, "force_convention", parse_force_convention);
   if (prov.has("method_selected_by")) out.provenance.selected_by = prov.string("method_selected_by");
   if (prov.has("selection")) out.provenance.selection = prov.raw()["selection"];
+  if (root.has("uncertainty")) out.provenance.uncertainty = uncertainty_from(root.object("uncertainty"));
   return out;
 }
 

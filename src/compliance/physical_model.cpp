@@ -109,7 +109,7 @@ nlohmann::json PhysicalModel::parameters() const {
 
 std::unique_ptr<PhysicalModel> fit_physical_model(const std::vector<PointSamples>& points,
                                                   const kinematics::FiveBarGeometry& geometry, int order,
-                                                  const std::string& source) {
+                                                  const std::string& source, bool check_definite) {
   auto g = GridBounds::none();
   for (const auto& p : points) g.include(p.position);
   if (points.empty() || !(g.x_max > g.x_min) || !(g.y_max > g.y_min)) {
@@ -151,6 +151,10 @@ std::unique_ptr<PhysicalModel> fit_physical_model(const std::vector<PointSamples
 
   std::vector<std::array<double, 3>> coefficients;
   for (int k = 0; k < terms; ++k) coefficients.push_back({sol(3 * k) * 1e-6, sol(3 * k + 1) * 1e-6, sol(3 * k + 2) * 1e-6});
+  if (!check_definite) {
+    return std::make_unique<PhysicalModel>(geometry, g, order, std::move(coefficients),
+                                           nlohmann::json{{"rms_residual_um", rms * 1e6}, {"equations", n}, {"unknowns", unknowns}});
+  }
   auto model = std::make_unique<PhysicalModel>(geometry, g, order, coefficients, nlohmann::json::object());
   // Positive definiteness of D over the grid rectangle (51 × 51 samples).
   double min_eig = 1e300;

@@ -138,7 +138,7 @@ nlohmann::json PhysicalSplineModel::parameters() const {
 std::unique_ptr<PhysicalSplineModel> fit_physical_spline_model(const std::vector<PointSamples>& points,
                                                                const kinematics::FiveBarGeometry& geometry,
                                                                const std::string& source, bool tabulate) {
-  auto physical = fit_physical_model(points, geometry, 1, source);
+  auto physical = fit_physical_model(points, geometry, 1, source, tabulate);  // refits without a lattice skip the D check
   physical->set_outside_policy(OutsidePolicy::extrapolate);
   std::vector<Vec2> positions;
   std::vector<Mat2> residuals;

@@ -21,15 +21,6 @@ Eigen::MatrixXd columns(const Eigen::MatrixXd& J, const std::vector<int>& cols) 
   return out;
 }
 
-// Numerical rank of J against the reference singular value `largest`.
-int rank_of(const Eigen::MatrixXd& J, double largest, double ratio) {
-  if (J.cols() == 0) return 0;
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J);
-  const Eigen::VectorXd& s = svd.singularValues();
-  int r = 0;
-  for (Eigen::Index k = 0; k < s.size(); ++k) r += s(k) >= ratio * largest && s(k) > 0.0 ? 1 : 0;
-  return r;
-}
 }  // namespace
 
 const char* to_string(LeastSquaresStop stop) noexcept {
@@ -239,24 +230,50 @@ LeastSquaresResult least_squares(const LeastSquaresProblem& problem, const Eigen
   return lm.result(true, noise_sigma);
 }
 
-std::vector<int> parameters_to_fix(const Eigen::MatrixXd& Js, double ratio, std::span<const int> preference) {
+std::vector<int> parameters_to_fix(const Eigen::MatrixXd& Js, double ratio, std::span<const int> preference,
+                                   double min_share) {
   const auto n = static_cast<int>(Js.cols());
   if (n == 0) return {};
-  const double largest = Eigen::JacobiSVD<Eigen::MatrixXd>(Js).singularValues()(0);
-  const int rank = rank_of(Js, largest, ratio);
-  std::vector<int> order(preference.begin(), preference.end());
-  for (int k = 0; k < n; ++k) {
-    if (std::find(order.begin(), order.end(), k) == order.end()) order.push_back(k);
-  }
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Js, Eigen::ComputeFullV);
+  Eigen::VectorXd s = Eigen::VectorXd::Zero(n);
+  s.head(svd.singularValues().size()) = svd.singularValues();
+  int rank = 0;
+  for (int k = 0; k < n; ++k) rank += s(k) > 0.0 && s(k) >= ratio * s(0) ? 1 : 0;
+  if (rank == n) return {};
+  // N: an orthonormal basis of the undetermined directions. Fixing the parameters F removes them all when
+  // N's rows F form a non-singular square block; the smaller its least singular value, the more the fit of the
+  // rest still leans on directions the residuals barely see.
+  const Eigen::MatrixXd N = svd.matrixV().rightCols(n - rank);
+  const auto least = [&](const std::vector<int>& rows) {
+    Eigen::MatrixXd block(static_cast<Eigen::Index>(rows.size()), N.cols());
+    for (std::size_t i = 0; i < rows.size(); ++i) block.row(static_cast<Eigen::Index>(i)) = N.row(rows[i]);
+    const Eigen::VectorXd sv = Eigen::JacobiSVD<Eigen::MatrixXd>(block).singularValues();
+    return sv(sv.size() - 1);
+  };
   std::vector<int> fixed;
-  for (const int k : order) {
+  // First the preferred parameters, each while it carries at least min_share of an undetermined direction …
+  for (const int k : preference) {
     if (static_cast<int>(fixed.size()) == n - rank) break;
     if (k < 0 || k >= n || std::find(fixed.begin(), fixed.end(), k) != fixed.end()) continue;
-    std::vector<int> keep;
-    for (int j = 0; j < n; ++j) {
-      if (j != k && std::find(fixed.begin(), fixed.end(), j) == fixed.end()) keep.push_back(j);
+    std::vector<int> trial = fixed;
+    trial.push_back(k);
+    if (least(trial) >= min_share) fixed = std::move(trial);
+  }
+  // … then whichever keeps the block best conditioned (lowest index on ties).
+  while (static_cast<int>(fixed.size()) < n - rank) {
+    int best = -1;
+    double best_value = -1.0;
+    for (int k = 0; k < n; ++k) {
+      if (std::find(fixed.begin(), fixed.end(), k) != fixed.end()) continue;
+      std::vector<int> trial = fixed;
+      trial.push_back(k);
+      const double v = least(trial);
+      if (v > best_value) {
+        best = k;
+        best_value = v;
+      }
     }
-    if (rank_of(columns(Js, keep), largest, ratio) == rank) fixed.push_back(k);
+    fixed.push_back(best);
   }
   std::sort(fixed.begin(), fixed.end());
   return fixed;

@@ -37,12 +37,12 @@ bool FiveBarGeometry::is_thesis_case() const noexcept {
   const double l = proximal_m[0];
   return actuator_m[0].x() == 0.0 && actuator_m[0].y() == 0.0 && actuator_m[1].x() == 0.0 &&
          actuator_m[1].y() == 0.0 && proximal_m[1] == l && distal_m[0] == l && distal_m[1] == l && elbows[0] == 1 &&
-         elbows[1] == -1 && assembly == 1;
+         elbows[1] == -1 && assembly == 1 && joint_zero_rad[0] == 0.0 && joint_zero_rad[1] == 0.0;
 }
 
 bool FiveBarGeometry::operator==(const FiveBarGeometry& o) const noexcept {
   return actuator_m == o.actuator_m && proximal_m == o.proximal_m && distal_m == o.distal_m && elbows == o.elbows &&
-         assembly == o.assembly;
+         assembly == o.assembly && joint_zero_rad == o.joint_zero_rad;
 }
 
 bool FiveBarGeometry::mirror_symmetric_about_x() const noexcept {
@@ -63,6 +63,7 @@ FiveBar::FiveBar(const FiveBarGeometry& geometry, SingularityMargin margin, std:
     if (!g_.actuator_m[i].allFinite()) throw Error(fmt::format("five-bar: the {} actuator's position is not finite", side));
     if (g_.elbows[i] != 1 && g_.elbows[i] != -1) throw Error(fmt::format("five-bar: the {} elbow must be +1 or -1", side));
     if (!std::isfinite(angle_floor_[i])) throw Error("five-bar: joint angle window must be finite");
+    if (!std::isfinite(g_.joint_zero_rad[i])) throw Error(fmt::format("five-bar: the {} joint's zero offset is not finite", side));
   }
   if (g_.assembly != 1 && g_.assembly != -1) throw Error("five-bar: assembly mode must be +1 or -1");
   const double shortest = std::min({g_.proximal_m[0], g_.proximal_m[1], g_.distal_m[0], g_.distal_m[1]});
@@ -104,13 +105,16 @@ Vec2 FiveBar::forward_checked(const Vec2& q) const {
   return forward(q);
 }
 
-std::array<Vec2, 2> FiveBar::elbows(const Vec2& q) const noexcept {
+std::array<Vec2, 2> FiveBar::elbows(const Vec2& q_joint) const noexcept {
+  const Vec2 q = links(q_joint);
   return {g_.actuator_m[0] + g_.proximal_m[0] * Vec2(std::cos(q.x()), std::sin(q.x())),
           g_.actuator_m[1] + g_.proximal_m[1] * Vec2(std::cos(q.y()), std::sin(q.y()))};
 }
 
-bool FiveBar::close_loop(const Vec2& q, Vec2& c, std::array<Vec2, 2>& u) const noexcept {
-  const auto b = elbows(q);
+// q: joint readings; the link angles are q + δ.
+bool FiveBar::close_loop(const Vec2& q_joint, Vec2& c, std::array<Vec2, 2>& u) const noexcept {
+  const auto b = elbows(q_joint);
+  const Vec2 q = links(q_joint);
   const Vec2 d = b[1] - b[0];
   const double dist = d.norm(), l1 = g_.distal_m[0], l2 = g_.distal_m[1];
   if (!(dist > 0.0)) {
@@ -227,7 +231,7 @@ InverseResult FiveBar::solve_general(const Vec2& p, InverseFrame* frame) const n
     const double c_phi = d[i].x() * inverse_r, s_phi = d[i].y() * inverse_r;
     e[i] = {c_phi * c_alpha - s * s_phi * s_alpha, s_phi * c_alpha + s * c_phi * s_alpha};
     u[i] = (d[i] - lp * e[i]) / ld;
-    double theta = std::atan2(d[i].y(), d[i].x()) + s * std::acos(c_alpha);
+    double theta = std::atan2(d[i].y(), d[i].x()) + s * std::acos(c_alpha) - g_.joint_zero_rad[i];
     theta -= 2.0 * std::numbers::pi * std::floor((theta - angle_floor_[i]) / (2.0 * std::numbers::pi));
     result.q[i] = theta;
   }
@@ -302,7 +306,8 @@ Mat2 FiveBar::jacobian(const Vec2& q) const noexcept {
   Vec2 c;
   std::array<Vec2, 2> u;
   close_loop(q, c, u);
-  const std::array<Vec2, 2> e{Vec2(std::cos(q.x()), std::sin(q.x())), Vec2(std::cos(q.y()), std::sin(q.y()))};
+  const Vec2 l = links(q);
+  const std::array<Vec2, 2> e{Vec2(std::cos(l.x()), std::sin(l.x())), Vec2(std::cos(l.y()), std::sin(l.y()))};
   const double inverse_det = 1.0 / cross(u[0], u[1]);
   const double b0 = g_.proximal_m[0] * cross(e[0], u[0]) * inverse_det;
   const double b1 = g_.proximal_m[1] * cross(e[1], u[1]) * inverse_det;
@@ -322,7 +327,8 @@ Mat2 FiveBar::jacobian_dot(const Vec2& q, const Vec2& qd) const noexcept {
   InverseFrame f;
   Vec2 c;
   close_loop(q, c, f.distal);
-  f.proximal = {Vec2(std::cos(q.x()), std::sin(q.x())), Vec2(std::cos(q.y()), std::sin(q.y()))};
+  const Vec2 l = links(q);
+  f.proximal = {Vec2(std::cos(l.x()), std::sin(l.x())), Vec2(std::cos(l.y()), std::sin(l.y()))};
   f.jacobian = jacobian(q);
   return jacobian_dot(f, qd);
 }

@@ -26,11 +26,19 @@ std::string Robot::source() const { return preset ? "preset " + name : file.labe
 std::string geometry_text(const FiveBarGeometry& g) {
   // Nanometre resolution: the same text after a round trip through a file in mm.
   const auto mm = [](double m) { return fmt::format("{:.6f}", units::m_to_mm(m) + 0.0); };
-  return fmt::format("five-bar;left_actuator_mm={},{};right_actuator_mm={},{};proximal_mm={},{};distal_mm={},{};"
-                     "elbows={},{};assembly={}",
-                     mm(g.actuator_m[0].x()), mm(g.actuator_m[0].y()), mm(g.actuator_m[1].x()), mm(g.actuator_m[1].y()),
-                     mm(g.proximal_m[0]), mm(g.proximal_m[1]), mm(g.distal_m[0]), mm(g.distal_m[1]), g.elbows[0],
-                     g.elbows[1], g.assembly);
+  std::string text =
+      fmt::format("five-bar;left_actuator_mm={},{};right_actuator_mm={},{};proximal_mm={},{};distal_mm={},{};"
+                  "elbows={},{};assembly={}",
+                  mm(g.actuator_m[0].x()), mm(g.actuator_m[0].y()), mm(g.actuator_m[1].x()), mm(g.actuator_m[1].y()),
+                  mm(g.proximal_m[0]), mm(g.proximal_m[1]), mm(g.distal_m[0]), mm(g.distal_m[1]), g.elbows[0],
+                  g.elbows[1], g.assembly);
+  // Zero offsets only when there are any, so that every geometry without them keeps its hash. 10⁻⁹ deg: the
+  // same text after a round trip through a file in degrees.
+  if (g.joint_zero_rad[0] != 0.0 || g.joint_zero_rad[1] != 0.0) {
+    const auto deg = [](double rad) { return fmt::format("{:.9f}", units::rad_to_deg(rad) + 0.0); };
+    text += fmt::format(";joint_zero_deg={},{}", deg(g.joint_zero_rad[0]), deg(g.joint_zero_rad[1]));
+  }
+  return text;
 }
 
 std::string geometry_hash(const FiveBarGeometry& g) { return core::sha256_hex(geometry_text(g)); }

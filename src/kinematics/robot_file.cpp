@@ -1,4 +1,5 @@
 // Robot files: field-by-field validation with located errors, unknown keys refused, and JSON output.
+#include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
 #include <numbers>
@@ -44,6 +45,16 @@ FiveBarGeometry parse_geometry(const core::JsonObject& root) {
     g.elbows[i] = elbows[i].get<double>() > 0 ? 1 : -1;
   }
   g.assembly = root.has("assembly") ? root.sign("assembly") : 1;
+  if (root.has("joint_zero_offsets_deg")) {
+    const auto [d1, d2] = root.pair("joint_zero_offsets_deg");
+    for (const double d : {d1, d2}) {
+      if (!(std::abs(d) <= kMaxJointZeroOffset_deg)) {
+        root.fail("joint_zero_offsets_deg",
+                  fmt::format("each offset must lie within +-{:g} deg, got {}", kMaxJointZeroOffset_deg, d));
+      }
+    }
+    g.joint_zero_rad = {units::deg_to_rad(d1), units::deg_to_rad(d2)};
+  }
   return g;
 }
 
@@ -59,7 +70,8 @@ Robot parse_robot(std::string_view text, const core::DataRef& file) {
   const core::JsonDocument doc = core::parse_json_document(text, file.label());
   const core::JsonObject root(doc);
   root.allow_only({"name", "description", "left_actuator_mm", "right_actuator_mm", "left_proximal_mm",
-                   "right_proximal_mm", "left_distal_mm", "right_distal_mm", "elbows", "assembly", "moving_mass_kg",
+                   "right_proximal_mm", "left_distal_mm", "right_distal_mm", "elbows", "assembly",
+                   "joint_zero_offsets_deg", "moving_mass_kg",
                    "tip_damping_ratio", "cg", "measurement", "joints", "singularity_margin", "home_mm", "compliance"},
                   kHints);
   Robot robot;
@@ -138,7 +150,7 @@ Robot parse_robot(std::string_view text, const core::DataRef& file) {
 
 nlohmann::json geometry_to_json(const FiveBarGeometry& g) {
   const auto mm = [](const Vec2& p) { return nlohmann::json::array({units::m_to_mm(p.x()), units::m_to_mm(p.y())}); };
-  return {{"left_actuator_mm", mm(g.actuator_m[0])},
+  nlohmann::json out = {{"left_actuator_mm", mm(g.actuator_m[0])},
           {"right_actuator_mm", mm(g.actuator_m[1])},
           {"left_proximal_mm", units::m_to_mm(g.proximal_m[0])},
           {"right_proximal_mm", units::m_to_mm(g.proximal_m[1])},
@@ -146,6 +158,10 @@ nlohmann::json geometry_to_json(const FiveBarGeometry& g) {
           {"right_distal_mm", units::m_to_mm(g.distal_m[1])},
           {"elbows", {g.elbows[0], g.elbows[1]}},
           {"assembly", g.assembly}};
+  if (g.joint_zero_rad[0] != 0.0 || g.joint_zero_rad[1] != 0.0) {
+    out["joint_zero_offsets_deg"] = {units::rad_to_deg(g.joint_zero_rad[0]), units::rad_to_deg(g.joint_zero_rad[1])};
+  }
+  return out;
 }
 
 nlohmann::json to_json(const Robot& r) {

@@ -282,5 +282,46 @@ TEST(GeneralFiveBar, GeneralFormulasAgreeWithTheThesisClosedForms) {
   EXPECT_LE(differ, 3);
 }
 
+TEST(GeneralFiveBar, JointZeroOffsetsShiftTheJointReadingsAndNothingElse) {
+  // A robot whose links stand δ_i ahead of its joint readings: forward(q) is the offset-free robot's at q + δ,
+  // inverse(p) its angles minus δ, and J, κ, the elbows and the reach are the same at corresponding angles.
+  std::mt19937_64 rng(kSeed + 9);
+  std::uniform_real_distribution<double> u(-0.35, 0.35), off(-0.05, 0.05);
+  int checked = 0;
+  for (int g_k = 0; g_k < 20; ++g_k) {
+    FiveBarGeometry plain = random_geometry(rng);
+    FiveBarGeometry shifted = plain;
+    shifted.joint_zero_rad = {off(rng), off(rng)};
+    const Vec2 delta(shifted.joint_zero_rad[0], shifted.joint_zero_rad[1]);
+    ASSERT_FALSE(shifted == plain);
+    const FiveBar a(plain, kLoose), b(shifted, kLoose);
+    for (int k = 0; k < 200; ++k) {
+      const Vec2 p{u(rng), u(rng)};
+      const InverseResult ra = a.solve_inverse(p), rb = b.solve_inverse(p);
+      ASSERT_EQ(ra.status, rb.status);
+      if (ra.status != Reach::ok) continue;
+      ++checked;
+      EXPECT_NEAR(wrap(rb.q.x() - (ra.q.x() - delta.x())), 0.0, 1e-12);
+      EXPECT_NEAR(wrap(rb.q.y() - (ra.q.y() - delta.y())), 0.0, 1e-12);
+      EXPECT_LT((b.forward(rb.q) - p).norm(), 1e-12);
+      EXPECT_LT((b.forward(rb.q) - a.forward(ra.q)).norm(), 1e-12);
+      EXPECT_LT((b.jacobian(rb.q) - a.jacobian(ra.q)).norm(), 1e-9);
+      EXPECT_NEAR(b.condition_number(rb.q), a.condition_number(ra.q), 1e-9 * a.condition_number(ra.q));
+      EXPECT_LT((b.elbows(rb.q)[0] - a.elbows(ra.q)[0]).norm(), 1e-12);
+      const Vec2 qd{0.3, -0.7};
+      EXPECT_LT((b.jacobian_dot(rb.q, qd) - a.jacobian_dot(ra.q, qd)).norm(), 1e-9);
+      EXPECT_NEAR(wrap(b.passive_angles(rb.q).theta3_rad - a.passive_angles(ra.q).theta3_rad), 0.0, 1e-12);
+    }
+  }
+  EXPECT_GT(checked, 200);
+  // The thesis's robot with an offset leaves its closed forms, and the general path gives eq. 2.1 at q + δ.
+  FiveBarGeometry thesis = FiveBarGeometry::thesis(0.150);
+  thesis.joint_zero_rad = {1e-3, -2e-3};
+  EXPECT_FALSE(thesis.is_thesis_case());
+  const FiveBar t(thesis, {});
+  const Vec2 q(0.9, -0.4), l(0.9 + 1e-3, -0.4 - 2e-3);
+  EXPECT_LT((t.forward(q) - 0.150 * Vec2(std::cos(l.x()) + std::cos(l.y()), std::sin(l.x()) + std::sin(l.y()))).norm(), 1e-15);
+}
+
 }  // namespace
 }  // namespace stiffpath::kinematics

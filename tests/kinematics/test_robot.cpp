@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <numbers>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -155,6 +156,30 @@ TEST(Robot, UserFileResolvesItsTableBesideItself) {
   EXPECT_EQ(r.geometry.assembly, 1);  // the default
   EXPECT_FALSE(r.replica.has_value());
   EXPECT_EQ(r.cg_label, "G");
+}
+
+TEST(Robot, JointZeroOffsetsAreReadWrittenAndHashedOnlyWhenPresent) {
+  test::TempDir dir;
+  nlohmann::json doc = user_robot();
+  doc.erase("compliance");
+  test::write_text(dir / "plain.json", doc.dump());
+  doc["joint_zero_offsets_deg"] = {0.05, -0.1};
+  test::write_text(dir / "offset.json", doc.dump());
+  const Robot plain = load_robot((dir / "plain.json").string()), offset = load_robot((dir / "offset.json").string());
+  EXPECT_NEAR(offset.geometry.joint_zero_rad[0], 0.05 * std::numbers::pi / 180, 1e-18);
+  EXPECT_NEAR(offset.geometry.joint_zero_rad[1], -0.1 * std::numbers::pi / 180, 1e-18);
+  EXPECT_NE(offset.geometry_hash(), plain.geometry_hash());
+  EXPECT_EQ(geometry_text(plain.geometry).find("joint_zero"), std::string::npos);  // old hashes unchanged
+  EXPECT_FALSE(geometry_to_json(plain.geometry).contains("joint_zero_offsets_deg"));
+  // Round trip through the file format: the same hash.
+  test::write_text(dir / "back.json", to_json(offset).dump());
+  EXPECT_EQ(load_robot((dir / "back.json").string()).geometry_hash(), offset.geometry_hash());
+  // The commanded angle of a point is the offset-free one minus the offset.
+  const Vec2 p(0.0, 0.21);
+  EXPECT_NEAR(offset.inverse(p).x(), plain.inverse(p).x() - offset.geometry.joint_zero_rad[0], 1e-12);
+  doc["joint_zero_offsets_deg"] = {0.0, 200.0};
+  EXPECT_NE(error_of(doc).find("joint_zero_offsets_deg: each offset must lie within +-180 deg, got 200"), std::string::npos)
+      << error_of(doc);
 }
 
 TEST(Robot, BadFilesNameTheLineAndTheField) {

@@ -20,6 +20,7 @@ struct CvLoad {
   Vec2 force_N;
   std::optional<double> dx_m, dy_m;  //!< measured (missing cells stay empty)
   Vec2 predicted_m;
+  Vec2 band_m = Vec2::Zero();  //!< half-width of the 95 % band of a measurement, per axis (0: not computed)
 };
 
 struct CvPoint {
@@ -40,6 +41,11 @@ struct CvMethod {
   double mean_um = 0.0;            //!< over the points the method can predict
   double max_um = 0.0;
   double interior_mean_um = 0.0;   //!< over the interior points
+  //! With uncertainty: the held-out cells (dx, dy at the reference loads) with a 95 % band, and how many of the
+  //! measured values fall inside it (the band learnt from the other points only).
+  int band_cells = 0;
+  int inside_band = 0;
+  double mean_band_um = 0.0;  //!< the bands' mean half-width: how sharp they are
 };
 
 //! A method that could not run on these points, and why.
@@ -62,9 +68,26 @@ struct CvReport {
 //! symmetric) need the points to form a full rectangular grid; they predict a held-out node by linear
 //! interpolation from its neighbours along x (else along y) — the bilinear scheme on the grid without
 //! that node. The physical models (with `geometry`) are refitted without the point and run on any
-//! layout. Methods that cannot run are listed in `skipped` with the reason.
+//! layout. Methods that cannot run are listed in `skipped` with the reason. With `with_uncertainty`, each held-out
+//! prediction also gets the 95 % band of a measurement (compliance::PredictionUncertainty learnt from the other
+//! points, by their own leave-one-out: nested, so the held-out point is never seen), and each method counts the
+//! held-out cells inside their band.
 CvReport cross_validate(const std::vector<PointSamples>& points, const kinematics::FiveBarGeometry& geometry,
-                        const std::string& source, ZeroForce zero_force = ZeroForce::relative);
+                        const std::string& source, ZeroForce zero_force = ZeroForce::relative,
+                        bool with_uncertainty = false);
+
+//! One point's compliance as a method predicts it from the other points.
+struct LooCompliance {
+  std::optional<Mat2> predicted;  //!< nullopt where the method cannot predict the point (grid corners)
+  std::vector<std::size_t> used;  //!< grid methods: the points the prediction used; empty: all the others
+};
+
+//! Leave-one-out predictions of every point's C by `method` ("bilinear", "symmetric", "physical", "physical-0",
+//! "physical-2", "physical-spline"): physical models refitted without the point, grid methods by neighbour
+//! interpolation as cross_validate() does (the points must form a full grid). Throws stiffpath::Error when the
+//! method cannot run on these points or is unknown.
+std::vector<LooCompliance> leave_one_out_compliance(const std::string& method, const std::vector<PointSamples>& points,
+                                                    const kinematics::FiveBarGeometry& geometry, const std::string& source);
 
 //! The method with the smallest mean error over the points every method in the report predicted
 //! (ties: the first listed), and that mean for each method (µm) in `scores`.

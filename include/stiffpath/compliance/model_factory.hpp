@@ -9,6 +9,7 @@
 
 #include "stiffpath/compliance/model.hpp"
 #include "stiffpath/compliance/point_fit.hpp"
+#include "stiffpath/compliance/uncertainty.hpp"
 #include "stiffpath/kinematics/robot.hpp"
 #include "stiffpath/measurement/displacement_table.hpp"
 
@@ -26,6 +27,8 @@ struct Provenance {
   //! How the method was chosen: "named" or "cross-validation" (with the scores in `selection`).
   std::string selected_by = "named";
   nlohmann::json selection;  //!< per method: mean leave-one-out error on the points all methods predict
+  //! The uncertainty of the model's predictions (add_uncertainty(); model files record it); empty when unknown.
+  std::optional<PredictionUncertainty> uncertainty;
 };
 
 //! A model together with its provenance and a name for messages.
@@ -47,6 +50,11 @@ std::vector<std::string> method_names();
 //! method cannot use (a grid method on an incomplete grid).
 LoadedModel fit_model(const measurement::DisplacementTable& table, const std::string& rows, const std::string& method,
                       ForceConvention convention, const kinematics::Robot& robot);
+
+//! Learns the model's prediction uncertainty (estimate_method_uncertainty) from the table it was fitted to (its
+//! provenance: source, rows, force convention) unless it has one. Throws stiffpath::Error when the table cannot be
+//! read or the method's leave-one-out cannot run on it.
+void add_uncertainty(LoadedModel& model);
 
 //! A built-in model ("thesis-oc", "thesis-sc" = the thesis's bilinear model; "thesis-oc-<method>"
 //! for another method: the preset oc-gu's or sc-gu's table and geometry), or a model file written by

@@ -61,9 +61,10 @@ class PhysicalModel final : public Model {
 };
 
 //! Fits D's coefficients to all samples (relative form: Δ = C(p)·F) by linear least squares.
-//! Throws stiffpath::Error naming `source` when there are fewer equations than unknowns.
+//! Throws stiffpath::Error naming `source` when there are fewer equations than unknowns. `check_definite` = false
+//! skips the 51 × 51 check of D's positive definiteness (its stats then lack it): for leave-one-out refits.
 std::unique_ptr<PhysicalModel> fit_physical_model(const std::vector<PointSamples>& points,
                                                   const kinematics::FiveBarGeometry& geometry, int order,
-                                                  const std::string& source);
+                                                  const std::string& source, bool check_definite = true);
 
 }  // namespace stiffpath::compliance

@@ -141,10 +141,12 @@ LeastSquaresStatistics analyse_jacobian(const Eigen::MatrixXd& scaled_jacobian, 
                                         double undetermined_ratio, std::optional<double> noise_sigma);
 
 //! Parameters to hold fixed so that the rest are determined: as many as J·diag(scale) has undetermined
-//! directions (singular value < `undetermined_ratio` × the largest), chosen in the order of `preference`
-//! (then by index): a parameter is fixed when the columns left keep the full rank. E.g. for a robot measured
-//! in an instrument's frame, preferring the robot's own frame parameters fixes the gauge the data cannot see.
+//! directions (singular value < `undetermined_ratio` × the largest). The parameters of `preference` come first,
+//! in its order, each taken when the fixed set keeps a share of at least `min_share` of every undetermined
+//! direction (the least singular value of the orthonormal undetermined basis' rows of the fixed parameters); the
+//! rest is completed by whichever parameter keeps that share largest. E.g. for a robot measured in an instrument's
+//! frame, preferring the robot's own frame parameters fixes the gauge that the readings cannot see.
 std::vector<int> parameters_to_fix(const Eigen::MatrixXd& scaled_jacobian, double undetermined_ratio,
-                                   std::span<const int> preference = {});
+                                   std::span<const int> preference = {}, double min_share = 0.1);
 
 }  // namespace stiffpath::core

@@ -22,12 +22,16 @@ struct FiveBarGeometry {
   //! Assembly mode σ: the sign of u_1 × u_2 (u_i the unit vector from B_i to C), i.e. +1 when C lies to
   //! the left of the line from B_1 to B_2. It only changes through the parallel singularity.
   int assembly = +1;
+  //! Joint zero offsets δ_i (rad): at a joint reading θ_i (what the drive is commanded and reports) the
+  //! proximal link stands at θ_i + δ_i. Zero for the presets; a geometry calibration identifies them.
+  //! Forward kinematics adds them, inverse kinematics subtracts them, joint limits apply to θ_i.
+  std::array<double, 2> joint_zero_rad{0.0, 0.0};
 
   //! The thesis's robot (§2.2): both actuators at the origin, four links of `link_length_m`, elbows
   //! [+1, −1], assembly +1: C = l·(e^{iθ1} + e^{iθ2}) (eq. 2.1).
   static FiveBarGeometry thesis(double link_length_m = 0.150) noexcept;
-  //! True when this is exactly the thesis's special case (bit-for-bit equal fields), for which the
-  //! closed forms of eqs. 2.1–2.2 are used.
+  //! True when this is exactly the thesis's special case (bit-for-bit equal fields, zero offsets zero), for
+  //! which the closed forms of eqs. 2.1–2.2 are used.
   [[nodiscard]] bool is_thesis_case() const noexcept;
   [[nodiscard]] bool operator==(const FiveBarGeometry& other) const noexcept;
   //! Whether the mirror y → −y maps the robot onto itself (the left arm onto the right one): the
@@ -101,7 +105,7 @@ class FiveBar final : public Mechanism {
 
   //! The distal links' absolute angles at q (thesis: θ3 = θ2, θ4 = θ1 by eq. 2.2).
   [[nodiscard]] PassiveAngles passive_angles(const Vec2& q) const noexcept;
-  //! The elbows B_1, B_2 at q (m).
+  //! The elbows B_1, B_2 at joint readings q (m).
   [[nodiscard]] std::array<Vec2, 2> elbows(const Vec2& q) const noexcept;
   //! The refusal of p in words, with the arm and the numbers ("left arm stretched out: |A1C| =
   //! 299.000 mm > l_p + l_d − margin = 295.000 mm"); empty when p is reachable.
@@ -116,6 +120,8 @@ class FiveBar final : public Mechanism {
   [[nodiscard]] InverseResult solve_general(const Vec2& p, InverseFrame* frame) const noexcept;
   //! C and the distal unit vectors at q; false when the loop cannot close (C is then the nearest point).
   bool close_loop(const Vec2& q, Vec2& c, std::array<Vec2, 2>& u) const noexcept;
+  //! The proximal links' absolute angles at joint readings q: q + δ.
+  [[nodiscard]] Vec2 links(const Vec2& q) const noexcept { return {q.x() + g_.joint_zero_rad[0], q.y() + g_.joint_zero_rad[1]}; }
 
   FiveBarGeometry g_;
   SingularityMargin margin_;

@@ -78,11 +78,17 @@ struct Robot {
   [[nodiscard]] bool within_limits(const Vec2& q) const noexcept;
 };
 
-//! The canonical text of a geometry (mm to 6 decimals, elbows, assembly), the input of geometry_hash().
+//! The largest joint zero offset a robot file may give (deg): a reading half a turn off is a wiring or
+//! sign error, not an offset.
+inline constexpr double kMaxJointZeroOffset_deg = 180.0;
+
+//! The canonical text of a geometry (mm to 6 decimals, elbows, assembly; the joint zero offsets in degrees to
+//! 9 decimals when either is not zero), the input of geometry_hash().
 std::string geometry_text(const FiveBarGeometry& geometry);
 //! SHA-256 of geometry_text().
 std::string geometry_hash(const FiveBarGeometry& geometry);
-//! The geometry's fields as in robot files (left_actuator_mm … elbows, assembly).
+//! The geometry's fields as in robot files (left_actuator_mm … elbows, assembly, and joint_zero_offsets_deg
+//! when either offset is not zero).
 nlohmann::json geometry_to_json(const FiveBarGeometry& geometry);
 
 //! Names of the built-in presets (oc-gu, oc-gl, sc-gu, sc-gl).
