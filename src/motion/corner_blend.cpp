@@ -3,10 +3,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "stiffpath/motion/biarc.hpp"
 #include "stiffpath/motion/junction.hpp"
+#include "stiffpath/motion/speed_change.hpp"
 
 namespace stiffpath::motion {
 
@@ -118,6 +120,29 @@ CornerBlender::CornerBlender(PathSource& source, double corner_angle_rad, bool f
       corner_angle_rad_(corner_angle_rad),
       corner_chord_(2.0 * std::sin(0.5 * corner_angle_rad)) {}
 
+CornerBlender::CornerBlender(PathSource& source, double corner_angle_rad, bool fit_chords, const CornerSpeedModel& model)
+    : CornerBlender(source, corner_angle_rad, fit_chords) {
+  model_ = model;
+}
+
+std::optional<CornerFillet> CornerBlender::chosen_fillet(const CornerFillet& full, const PathSegment& b, const Vec2& in,
+                                                         const Vec2& out, double tolerance_m, double max_trim_m) {
+  const PathSegment& a = *held_;
+  const MotionLimits& limits = model_->limits;
+  const double cap_in = std::min(a.feed_m_s, limits.max_velocity_m_s), cap_out = std::min(b.feed_m_s, limits.max_velocity_m_s);
+  // The first line cannot be faster at the corner than it gets over its length from its start.
+  const double reach = std::isfinite(held_start_speed_m_s_)
+                           ? reachable_speed(a.length_m, held_start_speed_m_s_, limits.max_acceleration_m_s2, limits.max_jerk_m_s3)
+                           : cap_in;
+  const CornerInput corner{turn_angle_rad(in, out), full.trim_m, std::min(cap_in, reach), cap_out,
+                           std::min(a.feed_m_s, b.feed_m_s)};
+  const CornerChoice choice = choose_corner(corner, *model_);
+  next_start_speed_m_s_ = choice.pass_speed_m_s;
+  if (!(choice.trim_m > 0.0)) return std::nullopt;
+  if (choice.trim_m >= full.trim_m) return full;
+  return corner_fillet(a.end_m, in, out, tolerance_m, std::min(max_trim_m, choice.trim_m));
+}
+
 std::optional<PathSegment> CornerBlender::next() {
   while (ready_.empty()) {
     if (exhausted_) {
@@ -135,6 +160,7 @@ std::optional<PathSegment> CornerBlender::next() {
       held_ = *incoming;
       held_length_m_ = incoming->length_m;
       held_blended_ = false;
+      held_start_speed_m_s_ = 0.0;  // the program starts at rest
       continue;
     }
     PathSegment& a = *held_;
@@ -144,16 +170,22 @@ std::optional<PathSegment> CornerBlender::next() {
     const Vec2 in = end_tangent(a), out = start_tangent(b);
     std::optional<CornerFillet> fillet;
     const double max_trim = 0.5 * std::min(held_length_m_, b.length_m);
+    const double tolerance = std::min(a.blend_tolerance_m, b.blend_tolerance_m);
+    // What bounds the speed at b's start: a dwell stops, the rest is not known here.
+    next_start_speed_m_s_ = a.kind == SegmentKind::dwell || b.kind == SegmentKind::dwell
+                                ? 0.0
+                                : std::numeric_limits<double>::infinity();
     if (blendable && (out - in).norm() > corner_chord_) {  // |out − in| = 2·sin(φ/2)
-      fillet = corner_fillet(a.end_m, in, out, a.blend_tolerance_m, max_trim);
+      fillet = corner_fillet(a.end_m, in, out, tolerance, max_trim);
+      if (fillet && model_) fillet = chosen_fillet(*fillet, b, in, out, tolerance, max_trim);
     }
     // Where the fillet is bounded by half the shorter line and would leave more of the first line
     // than an absorbing arc takes: a biarc that takes all the corner before left of the first line
     // and half of the second.
     std::optional<std::array<PathSegment, 2>> pair;
     if (fillet && held_blended_ && a.length_m <= 0.75 * held_length_m_ && fillet->trim_m >= max_trim * (1 - 1e-9) &&
-        a.length_m - fillet->trim_m > absorbed_line_m(a.blend_tolerance_m)) {
-      pair = corner_biarc(a.end_m, in, out, a.length_m, 0.5 * b.length_m, a.blend_tolerance_m);
+        a.length_m - fillet->trim_m > absorbed_line_m(tolerance)) {
+      pair = corner_biarc(a.end_m, in, out, a.length_m, 0.5 * b.length_m, tolerance);
     }
     // What is left of the first line: kept, or (shorter than shortest_segment_m, as it is when the
     // biarc takes all of it) taken into the first arc, which then starts exactly where the line did.
@@ -178,7 +210,7 @@ std::optional<PathSegment> CornerBlender::next() {
       a.length_m = (a.end_m - a.start_m).norm();
       // If the two blends of a line leave (almost) nothing of it, the arc starts where the line did.
       const std::optional<PathSegment> absorbing =
-          a.length_m <= absorbed_line_m(a.blend_tolerance_m)
+          a.length_m <= absorbed_line_m(tolerance)
               ? arc_absorbing_line(a.start_m, in, *fillet, 0.25 * corner_angle_rad_)
               : std::nullopt;
       const bool keep_line = !absorbing && a.length_m >= shortest_segment_m;
@@ -194,6 +226,7 @@ std::optional<PathSegment> CornerBlender::next() {
     }
     held_length_m_ = incoming->length_m;
     held_blended_ = pair || fillet;
+    held_start_speed_m_s_ = next_start_speed_m_s_;
     held_ = b;
   }
   PathSegment out = ready_.front();
