@@ -129,8 +129,9 @@ void add_motion_flags(CLI::App* cmd, MotionFlags& a) {
                   "Corner tolerance of a G64 without P and of a program that names no mode (mm)")
       ->capture_default_str();
   cmd->add_option("--chords", a.chords,
-                  "G64 chains of short lines: blend (a fillet at each vertex) or fit (one smooth curve within P)")
-      ->check(CLI::IsMember({"blend", "fit"}))
+                  "G64 chains of short lines: blend (a fillet at each vertex), fit (one smooth curve within P) or "
+                  "auto (fit the chains merged from staircases, blend the rest)")
+      ->check(CLI::IsMember({"blend", "fit", "auto"}))
       ->capture_default_str();
   cmd->add_option("--junction-time-ms", a.junction_time_ms, "Junction time: steps of v and a allowed at joins (ms)")
       ->capture_default_str();
@@ -191,6 +192,7 @@ motion::PlanOptions plan_options(const MotionFlags& a, const kinematics::Robot& 
   check("--junction-time-ms", a.junction_time_ms, 0.0, 1000.0, "ms");
   o.planner.junction.junction_time_s = a.junction_time_ms * 1e-3;
   o.planner.junction.fit_chords = a.chords == "fit";
+  o.planner.junction.fit_merged_chords = a.chords != "blend";
   o.planner.max_lookahead_segments = a.lookahead;
   o.gcode.strict = a.strict;
   o.gcode.dwell_p_units = a.dwell_p_units == "ms" ? motion::DwellUnits::milliseconds : motion::DwellUnits::seconds;
@@ -289,6 +291,7 @@ nlohmann::json slowdowns_json(const motion::SlowdownReport& r) {
   return {{"planned_time_s", tidy(r.planned_s())},
           {"programmed_time_s", tidy(r.programmed_s())},
           {"feed_above_limit_s", tidy(r.feed_above_limit_s())},
+          {"shortcut_s", tidy(r.shortcut_s())},
           {"lost_s", by_limit(r.lost_s())},
           {"stretches", stretches}};
 }

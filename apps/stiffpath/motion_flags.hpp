@@ -23,8 +23,8 @@ struct MotionFlags {
   std::string work_offset_mm;       // "X,Y"; empty: 0,0
   std::string start_mm;             // "X,Y"; empty: the first move's target
   std::string blend = "on";         // a program without G61/G64: on (blend within the tolerance) or off
-  double blend_tolerance_mm = 0.01;
-  std::string chords = "blend";  // G64 chains of short lines: blend (a fillet each) or fit
+  double blend_tolerance_mm = motion::default_blend_tolerance_m * 1e3;
+  std::string chords = "auto";   // G64 chains of short lines: blend (a fillet each), fit, or auto (fit merged ones)
   double junction_time_ms = 0.5;
   std::size_t lookahead = 0;
   bool strict = false;
@@ -50,7 +50,7 @@ void print_gcode_warnings(const std::string& file, const std::vector<motion::Gco
 //! The account of lost time (SlowdownReport) as summary lines: planned against programmed time,
 //! the time each limit cost, and the slowest stretches with their G-code lines.
 void print_slowdowns(std::FILE* out, const motion::SlowdownReport& report);
-//! The same as JSON: {"programmed_time_s", "planned_time_s", "feed_above_limit_s", "lost_s": {limit: s},
+//! The same as JSON: {"programmed_time_s", "planned_time_s", "feed_above_limit_s", "shortcut_s", "lost_s": {limit: s},
 //! "stretches": [{"first_line", "last_line", "start_s", "duration_s", "programmed_s", "lost_s",
 //! "lowest_speed_m_s", "limits": {limit: s}}]}.
 nlohmann::json slowdowns_json(const motion::SlowdownReport& report);

@@ -120,7 +120,7 @@ std::optional<PathSegment> entry_arc(const Vec2& start_m, const Vec2& u, const V
 
 }  // namespace
 
-ChordFitter::ChordFitter(PathSource& source) : source_(source) {}
+ChordFitter::ChordFitter(PathSource& source, bool merged_only) : source_(source), merged_only_(merged_only) {}
 
 std::optional<PathSegment> ChordFitter::next() {
   while (ready_.empty()) {
@@ -136,7 +136,8 @@ std::optional<PathSegment> ChordFitter::next() {
       exhausted_ = true;
       continue;
     }
-    if (!chain_.empty() && continues(chain_.back(), *incoming)) {
+    if (!chain_.empty() && continues(chain_.back(), *incoming) &&
+        (!merged_only_ || (chain_.back().merged && incoming->merged))) {
       chain_.push_back(*incoming);
       if (chain_.size() >= max_fitted_chain) {  // fit up to the last chord's midpoint, go on from there
         fit_chain(true);

@@ -8,7 +8,7 @@
 
 #include "stiffpath/motion/biarc.hpp"
 #include "stiffpath/motion/junction.hpp"
-#include "stiffpath/motion/speed_change.hpp"
+#include "stiffpath/motion/segment_limits.hpp"
 
 namespace stiffpath::motion {
 
@@ -120,22 +120,20 @@ CornerBlender::CornerBlender(PathSource& source, double corner_angle_rad, bool f
       corner_angle_rad_(corner_angle_rad),
       corner_chord_(2.0 * std::sin(0.5 * corner_angle_rad)) {}
 
-CornerBlender::CornerBlender(PathSource& source, double corner_angle_rad, bool fit_chords, const CornerSpeedModel& model)
-    : CornerBlender(source, corner_angle_rad, fit_chords) {
-  model_ = model;
-}
+CornerBlender::CornerBlender(PathSource& source, double corner_angle_rad, ChordFitting fitting, const CornerSpeedModel& model)
+    : fitter_(fitting != ChordFitting::none ? std::make_unique<ChordFitter>(source, fitting == ChordFitting::merged) : nullptr),
+      source_(fitter_ ? *fitter_ : source),
+      corner_angle_rad_(corner_angle_rad),
+      corner_chord_(2.0 * std::sin(0.5 * corner_angle_rad)),
+      model_(model) {}
 
 std::optional<CornerFillet> CornerBlender::chosen_fillet(const CornerFillet& full, const PathSegment& b, const Vec2& in,
                                                          const Vec2& out, double tolerance_m, double max_trim_m) {
   const PathSegment& a = *held_;
   const MotionLimits& limits = model_->limits;
   const double cap_in = std::min(a.feed_m_s, limits.max_velocity_m_s), cap_out = std::min(b.feed_m_s, limits.max_velocity_m_s);
-  // The first line cannot be faster at the corner than it gets over its length from its start.
-  const double reach = std::isfinite(held_start_speed_m_s_)
-                           ? reachable_speed(a.length_m, held_start_speed_m_s_, limits.max_acceleration_m_s2, limits.max_jerk_m_s3)
-                           : cap_in;
-  const CornerInput corner{turn_angle_rad(in, out), full.trim_m, std::min(cap_in, reach), cap_out,
-                           std::min(a.feed_m_s, b.feed_m_s)};
+  const CornerInput corner{turn_angle_rad(in, out), full.trim_m, a.length_m, b.length_m, held_start_speed_m_s_,
+                           cap_in, cap_out, std::min(a.feed_m_s, b.feed_m_s)};
   const CornerChoice choice = choose_corner(corner, *model_);
   next_start_speed_m_s_ = choice.pass_speed_m_s;
   if (!(choice.trim_m > 0.0)) return std::nullopt;
@@ -177,7 +175,12 @@ std::optional<PathSegment> CornerBlender::next() {
                                 : std::numeric_limits<double>::infinity();
     if (blendable && (out - in).norm() > corner_chord_) {  // |out − in| = 2·sin(φ/2)
       fillet = corner_fillet(a.end_m, in, out, tolerance, max_trim);
-      if (fillet && model_) fillet = chosen_fillet(*fillet, b, in, out, tolerance, max_trim);
+      // A fillet bounded by the tolerance (a corner of the drawing) is chosen by its time; one bounded
+      // by half a line (a vertex of chord-flattened curve, whose neighbours' fillets it meets) keeps
+      // all its room: there the local model does not see the curvature steps between the fillets.
+      if (fillet && model_ && fillet->trim_m < max_trim * (1 - 1e-9)) {
+        fillet = chosen_fillet(*fillet, b, in, out, tolerance, max_trim);
+      }
     }
     // Where the fillet is bounded by half the shorter line and would leave more of the first line
     // than an absorbing arc takes: a biarc that takes all the corner before left of the first line
@@ -223,6 +226,12 @@ std::optional<PathSegment> CornerBlender::next() {
       b.length_m = (b.end_m - b.start_m).norm();
     } else {
       ready_.push_back(a);
+    }
+    if (model_ && (pair || fillet) && ready_.back().kind == SegmentKind::arc) {
+      // The arc that ends at b's start bounds the speed there: its cap, and the curvature step into b.
+      const PathSegment& arc = ready_.back();
+      const double step = std::sqrt(model_->limits.max_jerk_m_s3 * model_->junction_time_s * arc.radius_m);
+      next_start_speed_m_s_ = std::min({next_start_speed_m_s_, step, segment_limits(arc, model_->limits).max_velocity_m_s});
     }
     held_length_m_ = incoming->length_m;
     held_blended_ = pair || fillet;

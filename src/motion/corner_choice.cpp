@@ -1,4 +1,4 @@
-// Choosing a G64 corner's fillet (or none) by the time it costs against the stop it replaces.
+// Choosing a G64 corner's fillet (or none) by the time the lines around it take, against the corner without it.
 #include "stiffpath/motion/corner_choice.hpp"
 
 #include <algorithm>
@@ -15,75 +15,88 @@ namespace stiffpath::motion {
 namespace {
 
 constexpr int trims_tried = 11;  // d_max · 2^-k, k = 0 … 10
+constexpr double infinity = std::numeric_limits<double>::infinity();
 
-// Time lost against cruising at `cruise` while changing speed between `cruise` and `w`: T − D/cruise.
-double change_loss(double cruise, double w, const MotionLimits& limits) noexcept {
-  if (!(cruise > 0.0) || w >= cruise) return 0.0;
-  const SpeedChange c = speed_change(cruise, w, limits.max_acceleration_m_s2, limits.max_jerk_m_s3);
-  return c.duration_s - c.distance_m / cruise;
+// The fastest way over `length` from at most `start_bound` (capped by `cap`) to exactly `w` at its end.
+// +inf when w cannot be reached.
+double time_in(double length, double start_bound, double w, double cap, const MotionLimits& l) noexcept {
+  const double a = l.max_acceleration_m_s2, j = l.max_jerk_m_s3;
+  const double start = std::min({start_bound, cap, reachable_speed(length, w, a, j)});
+  Profile p;
+  if (solve_profile({length, start, w, cap, a, j}, p) != ProfileStatus::ok) return infinity;
+  return p.duration_s;
 }
 
-struct Blend {
-  double loss_s = std::numeric_limits<double>::infinity();
+// The fastest way over `length` from `w` with a free end: speed up towards `cap`, then cruise.
+double time_out(double length, double w, double cap, const MotionLimits& l) noexcept {
+  const double a = l.max_acceleration_m_s2, j = l.max_jerk_m_s3;
+  const double end = std::min(cap, reachable_speed(length, w, a, j));
+  const SpeedChange c = speed_change(w, end, a, j);
+  return c.duration_s + (end >= cap ? std::max(length - c.distance_m, 0.0) / cap : 0.0);
+}
+
+struct Option {
+  double time_s = infinity;
   double pass_speed_m_s = 0.0;
 };
 
-Blend blend_loss(const CornerInput& c, double trim, const CornerSpeedModel& model) noexcept {
-  const double half = 0.5 * c.turn_rad;
-  const double radius = trim / std::tan(half), length = radius * c.turn_rad;
-  // The arc's own limits, as the planner gives them (a arc of this radius at the feed).
+// The lines around the corner with a fillet of trim d.
+Option with_fillet(const CornerInput& c, double trim, const CornerSpeedModel& model) noexcept {
+  const MotionLimits& l = model.limits;
+  const double radius = trim / std::tan(0.5 * c.turn_rad), length = radius * c.turn_rad;
   PathSegment arc = make_arc(Vec2(radius, 0.0), Vec2(radius * std::cos(c.turn_rad), radius * std::sin(c.turn_rad)),
                              Vec2::Zero(), c.turn_rad);
   arc.feed_m_s = c.feed_m_s;
-  const SegmentLimits own = segment_limits(arc, model.limits);
-  const double junction = std::sqrt(model.limits.max_jerk_m_s3 * model.junction_time_s * radius);
-  const double w = std::min({c.in_speed_m_s, c.out_speed_m_s, own.max_velocity_m_s, junction});
-  Blend b;
-  b.pass_speed_m_s = w;
-  if (!(w > 0.0)) return b;
+  const SegmentLimits own = segment_limits(arc, l);  // the arc's limits, as the planner gives them
+  const double in = c.in_length_m - trim, out = c.out_length_m - trim;
+  const double start = std::min(c.in_start_speed_m_s, c.in_cap_m_s);
+  const double reach = reachable_speed(in, std::isfinite(start) ? start : 0.0, l.max_acceleration_m_s2, l.max_jerk_m_s3);
+  const double w = std::min({c.in_cap_m_s, c.out_cap_m_s, own.max_velocity_m_s,
+                             std::sqrt(l.max_jerk_m_s3 * model.junction_time_s * radius),
+                             std::isfinite(start) ? reach : infinity});
+  Option o;
+  o.pass_speed_m_s = w;
+  if (!(w > 0.0)) return o;
   double arc_s = length / w;
-  Profile profile;
-  if (solve_profile({length, w, w, own.max_velocity_m_s, own.max_acceleration_m_s2, own.max_jerk_m_s3}, profile) ==
+  Profile p;
+  if (solve_profile({length, w, w, own.max_velocity_m_s, own.max_acceleration_m_s2, own.max_jerk_m_s3}, p) ==
       ProfileStatus::ok) {
-    arc_s = std::min(arc_s, profile.duration_s);
+    arc_s = std::min(arc_s, p.duration_s);
   }
-  b.loss_s = change_loss(c.in_speed_m_s, w, model.limits) + change_loss(c.out_speed_m_s, w, model.limits) + arc_s -
-             trim / c.in_speed_m_s - trim / c.out_speed_m_s;
-  return b;
+  o.time_s = time_in(in, c.in_start_speed_m_s, w, c.in_cap_m_s, l) + arc_s + time_out(out, w, c.out_cap_m_s, l);
+  return o;
 }
 
 }  // namespace
 
 CornerChoice choose_corner(const CornerInput& c, const CornerSpeedModel& model) noexcept {
   CornerChoice choice;
-  if (!(c.max_trim_m > 0.0) || !(c.turn_rad > 0.0) || !(c.in_speed_m_s > 0.0) || !(c.out_speed_m_s > 0.0)) {
-    choice.trim_m = c.max_trim_m;
-    return choice;
-  }
-  const Blend full = blend_loss(c, c.max_trim_m, model);
   choice.trim_m = c.max_trim_m;
+  if (!(c.max_trim_m > 0.0) || !(c.turn_rad > 0.0) || !(c.in_cap_m_s > 0.0) || !(c.out_cap_m_s > 0.0)) return choice;
+  const Option full = with_fillet(c, c.max_trim_m, model);
   choice.pass_speed_m_s = full.pass_speed_m_s;
-  choice.loss_s = full.loss_s;
-  if (full.pass_speed_m_s >= std::min(c.in_speed_m_s, c.out_speed_m_s)) return choice;  // no slowing down at all
+  choice.time_s = full.time_s;
+  if (full.pass_speed_m_s >= std::min(c.in_cap_m_s, c.out_cap_m_s)) return choice;  // no slowing down at all
   // Without a fillet the corner is passed at the speed whose velocity step 2·v·sin(φ/2) is j·τ² (junction.hpp).
+  const MotionLimits& l = model.limits;
   const double tau = model.junction_time_s;
-  const double unrounded = std::min({c.in_speed_m_s, c.out_speed_m_s,
-                                     model.limits.max_jerk_m_s3 * tau * tau / (2.0 * std::sin(0.5 * c.turn_rad))});
-  choice.stop_loss_s = change_loss(c.in_speed_m_s, unrounded, model.limits) + change_loss(c.out_speed_m_s, unrounded, model.limits);
+  const double unrounded = std::min({c.in_cap_m_s, c.out_cap_m_s, l.max_jerk_m_s3 * tau * tau / (2.0 * std::sin(0.5 * c.turn_rad))});
+  choice.unrounded_time_s =
+      time_in(c.in_length_m, c.in_start_speed_m_s, unrounded, c.in_cap_m_s, l) + time_out(c.out_length_m, unrounded, c.out_cap_m_s, l);
   double trim = c.max_trim_m;
   for (int k = 1; k < trims_tried; ++k) {
     trim *= 0.5;
-    const Blend b = blend_loss(c, trim, model);
-    if (b.loss_s < choice.loss_s) {
+    const Option o = with_fillet(c, trim, model);
+    if (o.time_s < choice.time_s) {
       choice.trim_m = trim;
-      choice.pass_speed_m_s = b.pass_speed_m_s;
-      choice.loss_s = b.loss_s;
+      choice.pass_speed_m_s = o.pass_speed_m_s;
+      choice.time_s = o.time_s;
     }
   }
-  if (!(choice.loss_s <= choice.stop_loss_s)) {
+  if (!(choice.time_s <= choice.unrounded_time_s)) {
     choice.trim_m = 0.0;
     choice.pass_speed_m_s = unrounded;
-    choice.loss_s = choice.stop_loss_s;
+    choice.time_s = choice.unrounded_time_s;
   }
   return choice;
 }

@@ -14,6 +14,8 @@ using detail::GcodeBlock;
 namespace {
 constexpr double inch_m = 0.0254;
 constexpr double max_coordinate_mm = max_coordinate_m * 1e3;
+// The share of P that merging short lines may use (G64 Q is capped at it); the rest is the blends'.
+constexpr double merge_share = 0.5;
 }  // namespace
 
 GcodeInterpreter::GcodeInterpreter(const GcodeOptions& options, GcodeWarnings& warnings)
@@ -21,7 +23,7 @@ GcodeInterpreter::GcodeInterpreter(const GcodeOptions& options, GcodeWarnings& w
       warnings_(warnings),
       mode_(options.initial_mode),
       blend_tolerance_m_(options.default_blend_tolerance_m),
-      merge_tolerance_m_(0.5 * options.default_blend_tolerance_m),
+      merge_tolerance_m_(merge_share * options.default_blend_tolerance_m),
       position_m_(options.start_position_m) {}
 
 void GcodeInterpreter::warn(GcodeWarningKind kind, const GcodeBlock& b, const std::string& message) {
@@ -121,7 +123,7 @@ void GcodeInterpreter::set_modes(const GcodeBlock& b) {
       if (b.p != nullptr) blend_tolerance_m_ = b.p->value * scale_m_;
       // Q (LinuxCNC's naive CAM tolerance, P when not given; Q0: no merging) merges short lines; half
       // of P at most, so that the merged lines' blends keep the path within P of the program.
-      merge_tolerance_m_ = 0.5 * blend_tolerance_m_;
+      merge_tolerance_m_ = merge_share * blend_tolerance_m_;
       if (b.q != nullptr) merge_tolerance_m_ = std::min(merge_tolerance_m_, b.q->value * scale_m_);
     } else {
       mode_ = JunctionMode::exact_stop;

@@ -69,6 +69,7 @@ void LineMerger::flush() {
   if (!chain_) return;
   if (chain_lines_ > 1) {
     chain_->blend_tolerance_m = std::max(chain_->blend_tolerance_m - chain_->merge_tolerance_m, 0.0);
+    chain_->merged = true;
     ++merged_out_;
   }
   ready_.push_back(*chain_);

@@ -48,7 +48,7 @@ void SlowdownReport::close_stretch() {
 void SlowdownReport::add(const PlannedSegment& s) {
   planned_s_ += s.duration_s;
   if (s.path.kind == SegmentKind::dwell) {
-    programmed_s_ += s.path.dwell_s;
+    at_feed_s_ += s.path.dwell_s;
     if (open_) open_->duration_s += s.duration_s, open_->programmed_s += s.path.dwell_s;
     valley(SpeedLimit::dwell);
     return;
@@ -56,7 +56,7 @@ void SlowdownReport::add(const PlannedSegment& s) {
   const double v_max = limits_.max_velocity_m_s, length = s.path.length_m;
   const double target = s.path.rapid ? v_max : std::min(s.path.feed_m_s, v_max);
   const double programmed = length / target;
-  programmed_s_ += programmed;
+  at_feed_s_ += programmed;
   if (!s.path.rapid && s.path.feed_m_s > v_max) feed_above_limit_s_ += length / v_max - length / s.path.feed_m_s;
   const double own = std::min(segment_limits(s.path, limits_).max_velocity_m_s, target);
   const double cap = std::min(s.limits.max_velocity_m_s, own);
@@ -100,9 +100,10 @@ void SlowdownReport::add(const PlannedSegment& s) {
   if (!slowed && pending_s_ == 0.0) close_stretch();
 }
 
-void SlowdownReport::finish() {
+void SlowdownReport::finish(double programmed_s) {
   if (finished_) return;
   finished_ = true;
+  programmed_s_ = programmed_s;
   valley(SpeedLimit::rest);
   close_stretch();
 }
@@ -118,9 +119,21 @@ std::optional<PlannedSegment> SlowdownTap::next() {
   if (segment) {
     report_.add(*segment);
   } else {
-    report_.finish();
+    report_.finish(clock_.programmed_s());
   }
   return segment;
+}
+
+std::optional<PathSegment> FeedClock::next() {
+  std::optional<PathSegment> s = source_.next();
+  if (!s) return s;
+  if (s->kind == SegmentKind::dwell) {
+    programmed_s_ += s->dwell_s;
+  } else if (s->length_m > 0.0) {
+    const double v = s->rapid ? limits_.max_velocity_m_s : std::min(s->feed_m_s, limits_.max_velocity_m_s);
+    programmed_s_ += s->length_m / v;
+  }
+  return s;
 }
 
 }  // namespace stiffpath::motion

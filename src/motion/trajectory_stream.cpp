@@ -5,24 +5,29 @@ namespace stiffpath::motion {
 
 std::unique_ptr<CornerBlender> make_blender(PathSource& source, const PlanOptions& options) {
   const CornerSpeedModel model{options.limits, options.planner.junction.junction_time_s};
-  return std::make_unique<CornerBlender>(source, options.planner.junction.corner_angle_rad,
-                                         options.planner.junction.fit_chords, model);
+  const JunctionRules& rules = options.planner.junction;
+  const ChordFitting fitting = rules.fit_chords          ? ChordFitting::all
+                               : rules.fit_merged_chords ? ChordFitting::merged
+                                                         : ChordFitting::none;
+  return std::make_unique<CornerBlender>(source, rules.corner_angle_rad, fitting, model);
 }
 
 TrajectoryStream::TrajectoryStream(const std::filesystem::path& gcode, const PlanOptions& options)
     : reader_(std::make_unique<GcodeReader>(gcode, options.gcode)),
-      merger_(std::make_unique<LineMerger>(*reader_)),
+      clock_(std::make_unique<FeedClock>(*reader_, options.limits)),
+      merger_(std::make_unique<LineMerger>(*clock_)),
       blender_(make_blender(*merger_, options)),
       planner_(std::make_unique<Planner>(*blender_, options.limits, options.planner)),
-      tap_(std::make_unique<SlowdownTap>(*planner_, options.limits)),
+      tap_(std::make_unique<SlowdownTap>(*planner_, *clock_, options.limits)),
       sampler_(std::make_unique<Sampler>(*tap_, options.rate_hz)) {}
 
 TrajectoryStream::TrajectoryStream(std::istream& in, std::string label, const PlanOptions& options)
     : reader_(std::make_unique<GcodeReader>(in, std::move(label), options.gcode)),
-      merger_(std::make_unique<LineMerger>(*reader_)),
+      clock_(std::make_unique<FeedClock>(*reader_, options.limits)),
+      merger_(std::make_unique<LineMerger>(*clock_)),
       blender_(make_blender(*merger_, options)),
       planner_(std::make_unique<Planner>(*blender_, options.limits, options.planner)),
-      tap_(std::make_unique<SlowdownTap>(*planner_, options.limits)),
+      tap_(std::make_unique<SlowdownTap>(*planner_, *clock_, options.limits)),
       sampler_(std::make_unique<Sampler>(*tap_, options.rate_hz)) {}
 
 TrajectoryStream::~TrajectoryStream() = default;

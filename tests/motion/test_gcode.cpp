@@ -29,7 +29,7 @@ TEST(Gcode, ThesisXMotionInTheRobotFrame) {
   EXPECT_EQ(s.line, 4);
   EXPECT_FALSE(s.rapid);
   EXPECT_EQ(s.mode, JunctionMode::blend);  // a program that names no mode is blended (the thesis's own file says G61)
-  EXPECT_EQ(s.blend_tolerance_m, 10e-6);
+  EXPECT_EQ(s.blend_tolerance_m, default_blend_tolerance_m);
 }
 
 TEST(Gcode, CompactLowerCaseCommentsLineNumbersAndDelimiters) {

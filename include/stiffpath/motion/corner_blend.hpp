@@ -59,8 +59,9 @@ std::optional<std::array<PathSegment, 2>> corner_biarc(const Vec2& corner_m, con
 //! piece of line stays between the blends of a chord-flattened curve with uneven chords, and the
 //! curvature steps from one corner's arcs to the next instead of to zero and back. Holds at most
 //! two segments.
-//! With `fit_chords` a ChordFitter in front first turns chains of short chords into
-//! tangent biarcs within P, so only the vertices it leaves as corners get fillets.
+//! With `fit_chords` (ChordFitting::all) a ChordFitter in front first turns chains of short chords into
+//! tangent biarcs within P, so only the vertices it leaves as corners get fillets; with
+//! ChordFitting::merged it does so for chains of merged lines only.
 //! The fillet's tolerance is the lower of both lines' (a merged line's is lowered by its merge, see
 //! LineMerger). With a CornerSpeedModel (the planner's limits), each fillet between two lines is
 //! chosen by choose_corner: the trim among d_max·2⁻ᵏ that loses least time, or no fillet where even
@@ -72,7 +73,7 @@ std::optional<std::array<PathSegment, 2>> corner_biarc(const Vec2& corner_m, con
 class CornerBlender final : public PathSource {
  public:
   CornerBlender(PathSource& source, double corner_angle_rad, bool fit_chords = false);
-  CornerBlender(PathSource& source, double corner_angle_rad, bool fit_chords, const CornerSpeedModel& model);
+  CornerBlender(PathSource& source, double corner_angle_rad, ChordFitting fitting, const CornerSpeedModel& model);
   std::optional<PathSegment> next() override;
 
  private:
@@ -81,7 +82,7 @@ class CornerBlender final : public PathSource {
   std::optional<CornerFillet> chosen_fillet(const CornerFillet& full, const PathSegment& b, const Vec2& in,
                                             const Vec2& out, double tolerance_m, double max_trim_m);
 
-  std::unique_ptr<ChordFitter> fitter_;  // null without fit_chords
+  std::unique_ptr<ChordFitter> fitter_;  // null without fitting
   PathSource& source_;                   // the fitter, or the stage before
   double corner_angle_rad_;
   double corner_chord_;                // 2·sin(corner_angle_rad/2): |out − in| of a turn by that angle

@@ -21,6 +21,9 @@ inline constexpr double max_feed_mm_min = 1e6;
 inline constexpr double max_block_duration_s = 3600.0;
 //! Dwells longer than this (s) are accepted with a warning (G4 P500 is 500 s, or 0.5 s in ms).
 inline constexpr double long_dwell_warning_s = 60.0;
+//! Default blend tolerance (m): of a G64 without P and of a program that names no mode (20 µm; see
+//! GcodeOptions::default_blend_tolerance_m).
+inline constexpr double default_blend_tolerance_m = 20e-6;
 //! Largest G64 P blend tolerance (m); a corner is never rounded by more than half its shorter line.
 inline constexpr double max_blend_tolerance_m = 1.0;
 //! Default full-scale S: 1000, GRBL's default $30 (LightBurn's GRBL profile). Marlin uses 255.

@@ -58,8 +58,11 @@ struct GcodeOptions {
   //! GRBL and Marlin (junction deviation 0.01-0.013 mm) and LinuxCNC (G64) run a program that names no
   //! mode; JunctionMode::exact_stop stops at every corner of such a program (`--blend off`).
   JunctionMode initial_mode = JunctionMode::blend;
-  //! Blend tolerance of a G64 without P, and of a program that names no mode (m): 10 µm.
-  double default_blend_tolerance_m = 10e-6;
+  //! Blend tolerance of a G64 without P, and of a program that names no mode (m): 20 µm. Half of it
+  //! may merge short lines (LineMerger): 10 µm is what straightens the staircases of coordinates
+  //! written with two decimals (LaserWeb), whose vertices lie up to half a 0.01 mm step off the curve
+  //! on either side (docs/motion.md, measured).
+  double default_blend_tolerance_m = motion::default_blend_tolerance_m;
   //! How far an arc's end may be off its circle (m); also 0.1 % of the radius, whichever is larger.
   double arc_tolerance_m = 5e-6;
   //! Refuse what the strict RS274 subset does not have (Z, T, M6, O, M0/M1, G28/G30, G91.1,

@@ -26,6 +26,10 @@ struct JunctionRules {
   //! lengthens coarse ones (the gear outline's contour by 6.9 %) and 0.1 mm-chord circles by 0.1-3.1 %
   //! (docs/motion.md, "Fitted chords").
   bool fit_chords = false;
+  //! G64: true (the default, `--chords auto`), chains of lines merged by LineMerger (staircases, which
+  //! become uneven chords of a smooth curve) are fitted even when fit_chords is false: their blends
+  //! would step in curvature at every chord (measured in docs/motion.md).
+  bool fit_merged_chords = true;
 };
 
 //! What bounds the path's speed at a junction or on a segment: the account of a plan's lost time

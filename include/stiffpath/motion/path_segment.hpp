@@ -48,6 +48,7 @@ struct PathSegment {
   bool rapid = false;            //!< G0
   bool laser_on = false;         //!< laser firing: M3/M4 (M106, M62) active, power > 0 and not a G0 move
   bool dynamic_power = false;    //!< M4 (GRBL's laser mode): power scaled by speed / feed_m_s, see power_at
+  bool merged = false;           //!< a line LineMerger made of several (a staircase's, fine chords')
   JunctionMode mode = JunctionMode::exact_stop;  //!< how the junction at the end of this segment is passed
 };
 

@@ -56,6 +56,7 @@ class TrajectoryStream final : public SampleSource {
 
  private:
   std::unique_ptr<GcodeReader> reader_;
+  std::unique_ptr<FeedClock> clock_;
   std::unique_ptr<LineMerger> merger_;
   std::unique_ptr<CornerBlender> blender_;
   std::unique_ptr<Planner> planner_;
