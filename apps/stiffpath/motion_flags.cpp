@@ -229,7 +229,7 @@ std::string lines_of(const motion::SlowStretch& s) {
 std::string limits_of(const motion::SlowStretch& s) {
   std::vector<std::pair<double, motion::SpeedLimit>> parts;
   for (std::size_t k = 0; k < s.lost_s.size(); ++k) {
-    if (s.lost_s[k] > 0.0) parts.emplace_back(s.lost_s[k], static_cast<motion::SpeedLimit>(k));
+    if (s.lost_s[k] > 0.005 * s.lost_total_s()) parts.emplace_back(s.lost_s[k], static_cast<motion::SpeedLimit>(k));
   }
   std::sort(parts.begin(), parts.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
   std::string text;
