@@ -13,7 +13,8 @@ namespace stiffpath::cli {
 //! Default cap on the samples one job writes: 20 million, 2 h 46 min 40 s at 2 kHz.
 inline constexpr std::uint64_t default_max_samples = 20'000'000;
 //! The work bound of a job that writes no samples (plan or run without -o): a billion samples, 138 h
-//! 53 min at 2 kHz, each made and checked but not kept (about 5 min of `plan`, measured in docs/reliability.md).
+//! 53 min at 2 kHz, each made and checked but not kept (about 6 min of CPU for `plan`, 14 for `run`;
+//! docs/reliability.md).
 inline constexpr std::uint64_t max_unwritten_samples = 1'000'000'000;
 
 //! Adds "--max-samples N" (default 20 M, on what is written) to a subcommand that plans G-code.

@@ -127,12 +127,22 @@ CornerBlender::CornerBlender(PathSource& source, double corner_angle_rad, ChordF
       corner_chord_(2.0 * std::sin(0.5 * corner_angle_rad)),
       model_(model) {}
 
+double CornerBlender::speed_bound_at_held_start() const noexcept {
+  if (!(held_start_arc_radius_m_ > 0.0)) return held_start_speed_m_s_;
+  const MotionLimits& l = model_->limits;
+  PathSegment arc = make_arc(Vec2(held_start_arc_radius_m_, 0.0), Vec2(0.0, held_start_arc_radius_m_), Vec2::Zero(),
+                             0.5 * std::numbers::pi);
+  arc.feed_m_s = held_start_arc_feed_m_s_;
+  const double step = std::sqrt(l.max_jerk_m_s3 * model_->junction_time_s * held_start_arc_radius_m_);
+  return std::min({held_start_speed_m_s_, step, segment_limits(arc, l).max_velocity_m_s});
+}
+
 std::optional<CornerFillet> CornerBlender::chosen_fillet(const CornerFillet& full, const PathSegment& b, const Vec2& in,
                                                          const Vec2& out, double tolerance_m, double max_trim_m) {
   const PathSegment& a = *held_;
   const MotionLimits& limits = model_->limits;
   const double cap_in = std::min(a.feed_m_s, limits.max_velocity_m_s), cap_out = std::min(b.feed_m_s, limits.max_velocity_m_s);
-  const CornerInput corner{turn_angle_rad(in, out), full.trim_m, a.length_m, b.length_m, held_start_speed_m_s_,
+  const CornerInput corner{turn_angle_rad(in, out), full.trim_m, a.length_m, b.length_m, speed_bound_at_held_start(),
                            cap_in, cap_out, std::min(a.feed_m_s, b.feed_m_s)};
   const CornerChoice choice = choose_corner(corner, *model_);
   next_start_speed_m_s_ = choice.pass_speed_m_s;
@@ -159,6 +169,7 @@ std::optional<PathSegment> CornerBlender::next() {
       held_length_m_ = incoming->length_m;
       held_blended_ = false;
       held_start_speed_m_s_ = 0.0;  // the program starts at rest
+      held_start_arc_radius_m_ = 0.0;
       continue;
     }
     PathSegment& a = *held_;
@@ -227,15 +238,14 @@ std::optional<PathSegment> CornerBlender::next() {
     } else {
       ready_.push_back(a);
     }
-    if (model_ && (pair || fillet) && ready_.back().kind == SegmentKind::arc) {
-      // The arc that ends at b's start bounds the speed there: its cap, and the curvature step into b.
-      const PathSegment& arc = ready_.back();
-      const double step = std::sqrt(model_->limits.max_jerk_m_s3 * model_->junction_time_s * arc.radius_m);
-      next_start_speed_m_s_ = std::min({next_start_speed_m_s_, step, segment_limits(arc, model_->limits).max_velocity_m_s});
-    }
+    const bool arc_ends_here = (pair || fillet) && ready_.back().kind == SegmentKind::arc;
+    next_start_arc_radius_m_ = arc_ends_here ? ready_.back().radius_m : 0.0;
+    next_start_arc_feed_m_s_ = arc_ends_here ? ready_.back().feed_m_s : 0.0;
     held_length_m_ = incoming->length_m;
     held_blended_ = pair || fillet;
     held_start_speed_m_s_ = next_start_speed_m_s_;
+    held_start_arc_radius_m_ = next_start_arc_radius_m_;
+    held_start_arc_feed_m_s_ = next_start_arc_feed_m_s_;
     held_ = b;
   }
   PathSegment out = ready_.front();

@@ -83,7 +83,7 @@ CornerChoice choose_corner(const CornerInput& c, const CornerSpeedModel& model) 
   const double unrounded = std::min({c.in_cap_m_s, c.out_cap_m_s, l.max_jerk_m_s3 * tau * tau / (2.0 * std::sin(0.5 * c.turn_rad))});
   choice.unrounded_time_s =
       time_in(c.in_length_m, c.in_start_speed_m_s, unrounded, c.in_cap_m_s, l) + time_out(c.out_length_m, unrounded, c.out_cap_m_s, l);
-  double trim = c.max_trim_m;
+  double trim = c.max_trim_m, previous = full.time_s;
   for (int k = 1; k < trims_tried; ++k) {
     trim *= 0.5;
     const Option o = with_fillet(c, trim, model);
@@ -92,6 +92,8 @@ CornerChoice choose_corner(const CornerInput& c, const CornerSpeedModel& model) 
       choice.pass_speed_m_s = o.pass_speed_m_s;
       choice.time_s = o.time_s;
     }
+    if (k >= 2 && !(o.time_s < previous)) break;  // past the best: smaller fillets only take longer
+    previous = o.time_s;
   }
   if (!(choice.time_s <= choice.unrounded_time_s)) {
     choice.trim_m = 0.0;

@@ -65,10 +65,7 @@ void Planner::close_run() {
   // The junction rules bound the speed by both adjacent segments' caps; a run keeps the lowest cap
   // of its segments, so the junction also takes the caps of both runs.
   // Which cap: below every member's feed it is an arc's (or a tangent junction's inside the run).
-  double feed_cap = limits_.max_velocity_m_s;
-  for (std::size_t k = members_.size() - run.segments; k < members_.size(); ++k) {
-    feed_cap = std::min(feed_cap, members_[k].path.feed_m_s);
-  }
+  const double feed_cap = std::min(limits_.max_velocity_m_s, run.lowest_feed_m_s);
   const SpeedLimit cap_cause = node.limits.max_velocity_m_s < feed_cap ? SpeedLimit::arc_speed : SpeedLimit::feed;
   node.entry_limit_m_s = open_entry_limit_m_s_;
   node.entry_cause = open_entry_cause_;

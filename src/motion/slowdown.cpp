@@ -80,6 +80,10 @@ void SlowdownReport::add(const PlannedSegment& s) {
   after = std::max(after, 0.0);
   const double lost = arc + band + before + after;
   const bool slowed = lost > std::max(1e-7, 1e-3 * s.duration_s);
+  // A stretch is one kind of move: a mark (laser on), a feed move without the laser, or a rapid.
+  const int kind = s.path.rapid ? 2 : s.path.laser_on ? 1 : 0;
+  if (kind != last_kind_) close_stretch();
+  last_kind_ = kind;
   if (slowed && !open_) {
     open_ = SlowStretch{s.path.line, s.path.line, s.start_time_s, 0.0, 0.0, std::min(s.entry_speed_m_s, s.exit_speed_m_s), {}};
   }

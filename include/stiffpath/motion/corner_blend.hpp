@@ -81,6 +81,9 @@ class CornerBlender final : public PathSource {
   //! speed bound it leaves at b's start.
   std::optional<CornerFillet> chosen_fillet(const CornerFillet& full, const PathSegment& b, const Vec2& in,
                                             const Vec2& out, double tolerance_m, double max_trim_m);
+  //! The bound on the speed at held_'s start: the corner before, and the arc that ends there (its
+  //! cap, and the curvature step into held_, v²/r ≤ j·τ).
+  [[nodiscard]] double speed_bound_at_held_start() const noexcept;
 
   std::unique_ptr<ChordFitter> fitter_;  // null without fitting
   PathSource& source_;                   // the fitter, or the stage before
@@ -92,6 +95,10 @@ class CornerBlender final : public PathSource {
   std::optional<CornerSpeedModel> model_;
   double held_start_speed_m_s_ = 0.0;  // a bound on the speed at held_'s start (+inf: unknown)
   double next_start_speed_m_s_ = 0.0;  // the same for the segment after the corner being decided
+  // The arc that ends at held_'s start (radius 0: none): it bounds that speed too, worked out only
+  // when a corner is decided (speed_bound_at_held_start).
+  double held_start_arc_radius_m_ = 0.0, next_start_arc_radius_m_ = 0.0;
+  double held_start_arc_feed_m_s_ = 0.0, next_start_arc_feed_m_s_ = 0.0;
   std::deque<PathSegment> ready_;
   bool exhausted_ = false;
 };

@@ -44,8 +44,9 @@ struct CornerChoice {
 //! A fillet is chosen only where its time is at most that of the corner without one (whose speed is
 //! at least a stop's), so that a blend is never slower than stopping: the model's motion is one the
 //! planner can follow, so the planner's time is at most the model's. Among trims d_max·2⁻ᵏ (k = 0 …
-//! 10) the fastest is taken: a smaller fillet is passed slower but is shorter. Where the full fillet
-//! already passes at the lower of both caps, it is taken at once.
+//! 10, until the time rises again from k = 2 on) the fastest is taken: a smaller fillet is passed
+//! slower but is shorter. Where the full fillet already passes at the lower of both caps, it is taken
+//! at once.
 CornerChoice choose_corner(const CornerInput& corner, const CornerSpeedModel& model) noexcept;
 
 }  // namespace stiffpath::motion

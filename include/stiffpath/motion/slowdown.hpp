@@ -17,7 +17,8 @@ namespace stiffpath::motion {
 inline constexpr std::size_t speed_limit_kinds = 8;
 
 //! One stretch of the job where the path runs below its programmed feed: consecutive slowed
-//! segments, from the first source line to the last, and the time each limit cost in it.
+//! segments of one kind (marking, feed moves without the laser, or rapids), from the first source
+//! line to the last, and the time each limit cost in it.
 struct SlowStretch {
   int first_line = 0, last_line = 0;  //!< lowest and highest source line of its segments
   double start_s = 0.0;               //!< when it begins (s)
@@ -89,6 +90,7 @@ class SlowdownReport {
   double pending_s_ = 0.0;                 // descending loss waiting for its valley
   SpeedLimit climbing_ = SpeedLimit::rest;  // the valley the path climbs from
   std::optional<SlowStretch> open_;
+  int last_kind_ = -1;                     // 0 feed move, 1 laser on, 2 rapid: a stretch holds one kind
   std::vector<SlowStretch> stretches_;     // at most max_stretches_, any order
   bool finished_ = false;
 };
