@@ -3,12 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <string>
+#include <tuple>
 #include <vector>
 #include <fmt/format.h>
 
 #include "stiffpath/compliance/model_factory.hpp"
 #include "stiffpath/core/error.hpp"
+#include "stiffpath/core/least_squares.hpp"
 #include "stiffpath/simulation/structural_compliance.hpp"
 #include "structural_network.hpp"
 
@@ -41,24 +44,28 @@ struct Cells {
   int series = 0;
 };
 
+// A table point by its exact position (rows of one point share it bit for bit), and a load series by its point,
+// direction and axis; each numbered in order of first appearance.
+using PointKey = std::pair<double, double>;
+using SeriesKey = std::tuple<std::string, measurement::ForceDirection, int>;
+
+template <class Key>
+int index_of(std::map<Key, int>& keys, const Key& key) {
+  return keys.try_emplace(key, static_cast<int>(keys.size())).first->second;
+}
+
 Cells cells_of(const measurement::DisplacementTable& table) {
   Cells out;
-  std::vector<std::string> series, points;
-  const auto index = [](std::vector<std::string>& keys, const std::string& key) {
-    const auto it = std::find(keys.begin(), keys.end(), key);
-    if (it != keys.end()) return static_cast<int>(it - keys.begin());
-    keys.push_back(key);
-    return static_cast<int>(keys.size()) - 1;
-  };
+  std::map<PointKey, int> points;
+  std::map<SeriesKey, int> series;
   for (const auto& r : table.rows) {
     const Vec2 f = r.force_N * Vec2(measurement::direction_x(r.direction), measurement::direction_y(r.direction));
-    const int point = index(points, fmt::format("{}|{}", r.x_m, r.y_m));
+    const int point = index_of(points, PointKey{r.x_m, r.y_m});
     if (point == static_cast<int>(out.points.size())) out.points.emplace_back(r.x_m, r.y_m);
     for (int axis = 0; axis < 2; ++axis) {
       const auto& v = axis == 0 ? r.dx_m : r.dy_m;
       if (!v) continue;
-      const int s = index(series, fmt::format("{}|{}|{}", r.point, measurement::to_string(r.direction), axis));
-      out.cells.push_back({point, f, *v, axis, s});
+      out.cells.push_back({point, f, *v, axis, index_of(series, SeriesKey{r.point, r.direction, axis})});
     }
   }
   out.series = static_cast<int>(series.size());
@@ -180,16 +187,12 @@ Eigen::VectorXd start(int k) {
   return x;
 }
 
-// Projected Levenberg–Marquardt: where it stands (x, its damping λ) and whether it has stopped, so that a
-// run can be continued exactly where it left off.
-struct Descent {
-  Eigen::VectorXd x;
-  double lambda = 1e-2;
-  bool stopped = false;
-};
-
 // The parameters of arm i are x(i·kPerArm) … x(i·kPerArm + kPerArm − 1); -2 for the base's and the offset's.
 int arm_of(int k) { return k < kBase ? k / kPerArm : -2; }
+
+// Forward-difference steps of the Jacobian: on the compliances' logarithms and on the offsets (m).
+constexpr double kLogStep = 1e-5;
+constexpr double kOffsetStep = 1e-6;
 
 // The fit's residuals in two parts: the table's cells (every parameter) and the flatness guard (the arms' bar
 // offsets only). For the Jacobian, `table(x, -1, &kept)` keeps each arm's platform stiffness at every table point,
@@ -205,55 +208,29 @@ struct SplitCost {
     r << t, g;
     return r;
   }
-};
-
-// Continues `d` by up to `iterations` steps.
-template <class Cost>
-void descend(Descent& d, const Cost& cost, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi, int iterations) {
-  Eigen::VectorXd& x = d.x;
-  double& lambda = d.lambda;
-  x = x.cwiseMax(lo).cwiseMin(hi);
-  Eigen::VectorXd r = cost(x);
-  std::array<std::vector<Mat3>, 2> kept;  // each arm's stiffness at the table's points, at x
-  const Eigen::Index table_rows = r.size() - cost.guard(x).size();
-  Eigen::MatrixXd J(r.size(), kParams);
-  for (int it = 0; it < iterations && !d.stopped; ++it) {
-    const Eigen::VectorXd rt = r.head(table_rows), rg = r.tail(r.size() - table_rows);
-    cost.table(x, -1, &kept);
+  // ∂r/∂x by forward differences, given r(x).
+  Eigen::MatrixXd jacobian(const Eigen::VectorXd& x, const Eigen::VectorXd& r) const {
+    std::array<std::vector<Mat3>, 2> kept;  // each arm's stiffness at the table's points, at x
+    const Eigen::Index guard_rows = guard(x).size(), table_rows = r.size() - guard_rows;
+    const Eigen::VectorXd rt = r.head(table_rows), rg = r.tail(guard_rows);
+    Eigen::MatrixXd J(r.size(), kParams);
+    table(x, -1, &kept);
     for (int k = 0; k < kParams; ++k) {
       Eigen::VectorXd xp = x;
-      const double h = k >= kOffset || is_arm_offset(k) ? 1e-6 : 1e-5;
+      const double h = k >= kOffset || is_arm_offset(k) ? kOffsetStep : kLogStep;
       xp(k) += h;
-      J.col(k).head(table_rows) = (cost.table(xp, arm_of(k), &kept) - rt) / h;
+      J.col(k).head(table_rows) = (table(xp, arm_of(k), &kept) - rt) / h;
       // The guard depends on the bar offsets alone: its other columns are exactly the zeros that differencing
       // it would give.
       if (is_arm_offset(k)) {
-        J.col(k).tail(rg.size()) = (cost.guard(xp) - rg) / h;
+        J.col(k).tail(guard_rows) = (guard(xp) - rg) / h;
       } else {
-        J.col(k).tail(rg.size()).setZero();
+        J.col(k).tail(guard_rows).setZero();
       }
     }
-    const Eigen::MatrixXd A = J.transpose() * J;
-    const Eigen::VectorXd g = J.transpose() * r;
-    bool improved = false;
-    for (int tries = 0; tries < 10 && !improved; ++tries) {
-      Eigen::MatrixXd Ad = A;
-      Ad.diagonal() += lambda * (A.diagonal().array() + 1e-30).matrix();
-      const Eigen::VectorXd xn = (x - Ad.ldlt().solve(g)).cwiseMax(lo).cwiseMin(hi);
-      const Eigen::VectorXd rn = cost(xn);
-      if (rn.squaredNorm() < r.squaredNorm()) {
-        improved = (r.squaredNorm() - rn.squaredNorm()) > 1e-10 * r.squaredNorm();
-        x = xn;
-        r = rn;
-        lambda = std::max(lambda / 3.0, 1e-9);
-        if (!improved) break;
-      } else {
-        lambda *= 4.0;
-      }
-    }
-    if (!improved) d.stopped = true;
+    return J;
   }
-}
+};
 
 constexpr int kStarts = 16;     // the fit keeps the best of these fixed starts …
 constexpr int kScreenSteps = 40;  // … after screening all of them for this many steps
@@ -340,23 +317,27 @@ std::shared_ptr<StructuralModel> fit_structural_model(const kinematics::Robot& r
   };
   const SplitCost<decltype(table_cost), decltype(guard_cost)> cost{table_cost, guard_cost};
   const auto [lo, hi] = bounds();
+  core::LeastSquaresProblem problem;
+  problem.residuals = [&](const Eigen::VectorXd& x) { return cost(x); };
+  problem.jacobian = [&](const Eigen::VectorXd& x, const Eigen::VectorXd& r) { return cost.jacobian(x, r); };
+  problem.lower = lo;
+  problem.upper = hi;
+  // The solver's settings are core::LeastSquaresSettings' defaults (Marquardt's damping from 10⁻², ÷3 after a step
+  // that lowers the cost, ×4 after one that does not, converged below a 10⁻¹⁰ relative decrease).
   // Every start descends a little; the most promising go on, each exactly as an uninterrupted run would (a
   // start stopped by then is already final). For both thesis robots the winner of all 16 run to the end
   // (start 13, by far) is among the best 4 after 40 steps. Ties keep the lower start.
-  std::vector<std::pair<double, Descent>> runs;
+  std::vector<core::LevenbergMarquardt> runs;
   for (int k = 0; k < kStarts; ++k) {
-    Descent d{start(k)};
-    descend(d, cost, lo, hi, kScreenSteps);
-    runs.emplace_back(cost(d.x).squaredNorm(), std::move(d));
+    runs.emplace_back(problem, start(k));
+    runs.back().run(kScreenSteps);
   }
-  std::stable_sort(runs.begin(), runs.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  runs.resize(kFinalists);
-  for (auto& [value, d] : runs) {
-    descend(d, cost, lo, hi, kSteps - kScreenSteps);
-    value = cost(d.x).squaredNorm();
-  }
-  const auto best = std::min_element(runs.begin(), runs.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  const Unpacked u = unpack(best->second.x);
+  const auto by_cost = [](const core::LevenbergMarquardt& a, const core::LevenbergMarquardt& b) { return a.cost() < b.cost(); };
+  std::stable_sort(runs.begin(), runs.end(), by_cost);
+  runs.erase(runs.begin() + kFinalists, runs.end());
+  for (auto& run : runs) run.run(kSteps - kScreenSteps);
+  const auto best = std::min_element(runs.begin(), runs.end(), by_cost);
+  const Unpacked u = unpack(best->x());
   auto model = std::make_shared<StructuralModel>(robot, u.arms, region, u.base, u.offset);
   if (report) *report = structural_fit_report(*model, table);
   return model;
