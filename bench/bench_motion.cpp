@@ -20,6 +20,7 @@
 #include "stiffpath/kinematics/robot.hpp"
 #include "stiffpath/motion/profile.hpp"
 #include "stiffpath/motion/speed_change.hpp"
+#include "stiffpath/motion/slowdown.hpp"
 #include "stiffpath/motion/trajectory_stream.hpp"
 
 namespace {
@@ -182,10 +183,14 @@ void BM_CamProgram(benchmark::State& state) {
   PlannerOptions options;
   options.join_runs = state.range(1) != 0;
   std::size_t segments = 0, runs = 0, evaluations = 0, joined = 0;
+  PlanOptions plan;
+  plan.planner.junction.fit_chords = state.range(2) != 0;
   for (auto _ : state) {
     std::istringstream in(program);
     GcodeReader reader(in, "cam.gcode");
-    CornerBlender blender(reader, JunctionRules{}.corner_angle_rad, state.range(2) != 0);
+    LineMerger merger(reader);
+    const auto blender_owner = make_blender(merger, plan);  // the path stages of a plan
+    CornerBlender& blender = *blender_owner;
     segments = 0;
     if (stage == CamStage::path) {
       while (auto s = blender.next()) ++segments;
@@ -243,6 +248,143 @@ void BM_CamRunJob(benchmark::State& state, job::OutputFormat format) {
 BENCHMARK_CAPTURE(BM_CamRunJob, csv, job::OutputFormat::csv)->MeasureProcessCPUTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_CamRunJob, binary, job::OutputFormat::binary)->MeasureProcessCPUTime()->Unit(benchmark::kMillisecond);
 
+// CAM-style programs, each in the manner of one family of generators (the real programs are
+// not ours to copy): what the plan takes against the time at the programmed feeds.
+struct StyledProgram {
+  const char* name;
+  std::string text;
+};
+
+std::string f2(double v) { return fmt::format("{:.2f}", v); }
+
+// LaserWeb: a circle (R 10 mm) and a diagonal flattened at 0.01 mm and written with two decimals, F10000.
+std::string laserweb_staircase() {
+  std::string g = "; LaserWeb-style\nG21\nG90\nG0 X232.13 Y0.00\nM3 S1000\nG1 F10000\n";
+  std::string last;
+  const int n = static_cast<int>(2 * std::numbers::pi * 10 / 0.01);
+  for (int k = 1; k <= n; ++k) {
+    const double a = 2 * std::numbers::pi * k / n;
+    const std::string p = "G1 X" + f2(222.132 + 10 * std::cos(a)) + " Y" + f2(10 * std::sin(a)) + "\n";
+    if (p != last) g += p;
+    last = p;
+  }
+  g += "M5\nG0 X200.00 Y-20.00\nM3 S1000\n";
+  for (int k = 1; k <= 4000; ++k) {
+    const std::string p = "G1 X" + f2(200 + 40.0 * k / 4000) + " Y" + f2(-20 + 20.0 * k / 4000) + "\n";
+    if (p != last) g += p;
+    last = p;
+  }
+  return g + "M5\nM2\n";
+}
+
+// The fine chords: a 500-chord spiral in inches under G64 P0.001, F400 (in/min).
+std::string inch_spiral() {
+  std::string g = "G20 G90\nG64 P0.001\nG0 X8.7453 Y0.0000\nM3 S1000\nG1 F400\n";
+  for (int k = 1; k <= 500; ++k) {
+    const double t = 6 * std::numbers::pi * k / 500, r = 0.1 + 0.6 * k / 500;
+    g += fmt::format("X{:.4f} Y{:.4f}\n", 8.7453 + r * std::cos(t) - 0.1, r * std::sin(t));
+  }
+  return g + "M5\nM2\n";
+}
+
+// pcb2gcode: 0.5 mm pads outlined by 0.1 mm chords at F600 under G64 P0.01, and the traces between.
+std::string pcb_pads() {
+  std::string g = "G94\nG21\nG90\nG64 P0.01\nM3 S1000\n";
+  for (int p = 0; p < 40; ++p) {
+    const double cx = 200 + 5.0 * (p % 8), cy = -10 + 5.0 * (p / 8);
+    g += fmt::format("G00 X{:.5f} Y{:.5f}\nG01 F600\n", cx + 0.5, cy);
+    for (int k = 1; k <= 32; ++k) {
+      const double a = 2 * std::numbers::pi * k / 32;
+      g += fmt::format("G01 X{:.5f} Y{:.5f}\n", cx + 0.5 * std::cos(a), cy + 0.5 * std::sin(a));
+    }
+    g += fmt::format("G01 X{:.5f} Y{:.5f}\n", cx + 4.5, cy);
+  }
+  return g + "M5\nM2\n";
+}
+
+// LightBurn (GRBL): outlines with sharp corners (squares, hexagons, a zigzag of text-like strokes), no
+// mode named, F6000.
+std::string lightburn_outlines() {
+  std::string g = "G00 G17 G40 G21 G54\nG90\nM4\n";
+  for (int k = 0; k < 30; ++k) {
+    const double cx = 190 + 8.0 * (k % 8), cy = -30 + 12.0 * (k / 8);
+    const int sides = 3 + k % 4;
+    g += fmt::format("G0 X{:.3f}Y{:.3f}\n", cx + 3, cy);
+    for (int s = 1; s <= sides; ++s) {
+      const double a = 2 * std::numbers::pi * s / sides;
+      g += fmt::format("G1 X{:.3f}Y{:.3f}S800F6000\n", cx + 3 * std::cos(a), cy + 3 * std::sin(a));
+    }
+  }
+  g += "G0 X190Y30\n";
+  for (int k = 1; k <= 60; ++k) g += fmt::format("G1 X{:.3f}Y{:.3f}S800\n", 190.0 + k, 30.0 + (k % 2 ? 4 : 0));
+  return g + "M5\nM2\n";
+}
+
+// Fusion: lines with tangent arcs (rounded rectangles), no mode named, F1200-3000, Z words.
+std::string fusion_profiles() {
+  std::string g = "G90 G94 G17 G91.1\nG21\nT1 M6\nM3 S1000\n";
+  for (int k = 0; k < 20; ++k) {
+    const double x = 190 + 15.0 * (k % 4), y = -40 + 16.0 * (k / 4), r = 2 + k % 3;
+    g += fmt::format("G0 X{:.3f} Y{:.3f}\nG1 Z0. F1000.\n", x + r, y);
+    g += fmt::format("G1 X{:.3f} F{}\n", x + 10 - r, 1200 + 300 * (k % 7));
+    g += fmt::format("G3 X{:.3f} Y{:.3f} I0. J{:.3f}\n", x + 10, y + r, r);
+    g += fmt::format("G1 Y{:.3f}\n", y + 8 - r);
+    g += fmt::format("G3 X{:.3f} Y{:.3f} I{:.3f} J0.\n", x + 10 - r, y + 8, -r);
+    g += fmt::format("G1 X{:.3f}\n", x + r);
+    g += fmt::format("G3 X{:.3f} Y{:.3f} I0. J{:.3f}\n", x, y + 8 - r, -r);
+    g += fmt::format("G1 Y{:.3f}\n", y + r);
+    g += fmt::format("G3 X{:.3f} Y{:.3f} I{:.3f} J0.\nG0 Z5.\n", x + r, y, r);
+  }
+  return g + "M5\nM30\n";
+}
+
+// LightBurn fill: a hatch of 0.1 mm line spacing over 20 x 10 mm, F6000, the returns with the laser off.
+std::string hatch_fill() {
+  std::string g = "G21\nG90\nM4\nG0 X202 Y-5\n";
+  for (int k = 0; k < 100; ++k) {
+    const double y = -5 + 0.1 * k;
+    g += fmt::format("G1 X{} Y{:.2f} S600 F6000\nG1 Y{:.2f} S0\n", k % 2 ? 202 : 222, y, y + 0.1);
+  }
+  return g + "M5\nM2\n";
+}
+
+std::vector<StyledProgram> styled_programs() {
+  std::ifstream gear(std::string(STIFFPATH_SOURCE_DIR) + "/examples/gear_outline.gcode");
+  std::string gear_text((std::istreambuf_iterator<char>(gear)), {});
+  return {{"laserweb_staircase", laserweb_staircase()}, {"inch_spiral_p0.001", inch_spiral()},
+          {"pcb2gcode_pads", pcb_pads()},                {"lightburn_outlines", lightburn_outlines()},
+          {"fusion_profiles", fusion_profiles()},        {"lightburn_hatch", hatch_fill()},
+          {"gear_outline", gear_text},                   {"cam_contours_20k", stiffpath::bench::cam_program(20000)}};
+}
+
+// Planned time ÷ time at the programmed feeds for each styled program (the counter `ratio`), with
+// the library's defaults (5 g, 5 ms ramps, 2 m/s); `chords`: 0 blend, 1 auto (the default: fit the
+// merged staircases), 2 fit. The time measured is the planning (no sampling).
+void BM_CamFeedRatio(benchmark::State& state) {
+  const StyledProgram program = styled_programs().at(static_cast<std::size_t>(state.range(0)));
+  state.SetLabel(program.name);
+  PlanOptions options;
+  options.planner.junction.fit_chords = state.range(1) == 2;
+  options.planner.junction.fit_merged_chords = state.range(1) != 0;
+  double planned = 0.0, programmed = 0.0;
+  for (auto _ : state) {
+    std::istringstream in(program.text);
+    GcodeReader reader(in, "styled.gcode", options.gcode);
+    FeedClock clock(reader, options.limits);
+    LineMerger merger(clock);
+    const auto blender = make_blender(merger, options);
+    Planner planner(*blender, options.limits, options.planner);
+    SlowdownTap tap(planner, clock, options.limits);
+    while (auto s = tap.next()) benchmark::DoNotOptimize(s->duration_s);
+    planned = tap.report().planned_s();
+    programmed = tap.report().programmed_s();
+  }
+  state.counters["planned_s"] = planned;
+  state.counters["programmed_s"] = programmed;
+  state.counters["ratio"] = planned / programmed;
+}
+BENCHMARK(BM_CamFeedRatio)->ArgNames({"program", "chords"})->ArgsProduct({{0, 1, 2, 3, 4, 5, 6, 7}, {0, 1, 2}})->Unit(benchmark::kMillisecond);
+
 }  // namespace
 
 // `bench_motion --write-cam-program FILE` writes the CAM-like program of the benchmarks above, for
@@ -253,6 +395,10 @@ int main(int argc, char** argv) {
     std::ofstream out(argv[2]);
     out << stiffpath::bench::cam_program(100000);
     return out ? 0 : 1;
+  }
+  if (argc == 3 && std::string(argv[1]) == "--write-styled-programs") {  // DIR: each as DIR/NAME.gcode
+    for (const auto& p : styled_programs()) std::ofstream(std::filesystem::path(argv[2]) / (std::string(p.name) + ".gcode")) << p.text;
+    return 0;
   }
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;

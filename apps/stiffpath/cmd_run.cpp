@@ -160,6 +160,7 @@ void run(const RunArgs& a) {
                 {"peak_joint_velocity_rad_s", tidy(s.peak_joint_velocity_rad_s)},
                 {"peak_joint_acceleration_rad_s2", tidy(s.peak_joint_acceleration_rad_s2)},
                 {"samples_outside_grid", s.samples_outside_grid},
+                {"slowdowns", slowdowns_json(stream.slowdowns())},
                 {"output", a.output.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.output)}};
     if (a.output == "-") {
       std::cerr << summary_json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
@@ -183,6 +184,7 @@ void run(const RunArgs& a) {
     fmt::print(info, "  {} samples outside the compliance model's measured region ({})\n", s.samples_outside_grid,
                model ? compliance::to_string(model->outside_policy()) : "no model");
   }
+  print_slowdowns(info, stream.slowdowns());
   if (!a.output.empty()) fmt::print(info, "  wrote {}\n", a.output);
 }
 }  // namespace

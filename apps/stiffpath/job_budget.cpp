@@ -10,7 +10,8 @@ namespace stiffpath::cli {
 
 void add_max_samples_flag(CLI::App* cmd, std::uint64_t& max_samples) {
   cmd->add_option("--max-samples", max_samples,
-                  "Refuse a job with more samples than this (20 M: 2 h 46 min at 2 kHz); counted before writing")
+                  "Refuse to write a job with more samples than this (20 M: 2 h 46 min at 2 kHz); counted before "
+                  "writing. Without -o a job is only bounded by its work, 1e9 samples")
       ->capture_default_str()
       ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 50));
 }
@@ -21,6 +22,14 @@ motion::PlanSize check_job_budget(const std::string& job, const motion::PlanOpti
   size.samples += extra_samples;  // what filters after the planner add (their delay)
   size.duration_s += static_cast<double>(extra_samples) / options.rate_hz;
   const double bytes = static_cast<double>(size.samples) * estimate.bytes_per_sample + estimate.header_bytes;
+  if (output.empty()) {  // nothing is written: only the work is bounded
+    if (size.samples > max_unwritten_samples) {
+      throw Error(SourceLocation{job}, fmt::format("the {} has {} samples ({:.1f} s at {:g} Hz), more than the {} a job that "
+                                                   "writes nothing may make (its work bound)",
+                                                   noun, size.samples, size.duration_s, options.rate_hz, max_unwritten_samples));
+    }
+    return size;
+  }
   if (size.samples > max_samples) {
     throw Error(SourceLocation{job}, fmt::format("the {} has {} samples ({:.1f} s at {:g} Hz, about {} of {}), more than "
                                                  "the cap of {}; raise it with --max-samples",

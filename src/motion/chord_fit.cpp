@@ -120,7 +120,7 @@ std::optional<PathSegment> entry_arc(const Vec2& start_m, const Vec2& u, const V
 
 }  // namespace
 
-ChordFitter::ChordFitter(PathSource& source) : source_(source) {}
+ChordFitter::ChordFitter(PathSource& source, bool merged_only) : source_(source), merged_only_(merged_only) {}
 
 std::optional<PathSegment> ChordFitter::next() {
   while (ready_.empty()) {
@@ -136,7 +136,8 @@ std::optional<PathSegment> ChordFitter::next() {
       exhausted_ = true;
       continue;
     }
-    if (!chain_.empty() && continues(chain_.back(), *incoming)) {
+    const bool candidate = !merged_only_ || incoming->merged;  // ChordFitting::merged: merged lines only
+    if (!chain_.empty() && candidate && (!merged_only_ || chain_.back().merged) && continues(chain_.back(), *incoming)) {
       chain_.push_back(*incoming);
       if (chain_.size() >= max_fitted_chain) {  // fit up to the last chord's midpoint, go on from there
         fit_chain(true);
@@ -146,12 +147,15 @@ std::optional<PathSegment> ChordFitter::next() {
       }
       continue;
     }
-    if (!chain_.empty()) {
+    if (chain_.size() == 1 && !chain_starts_mid_) {  // a chain of one chord: nothing to fit
+      ready_.push_back(chain_.front());
+      chain_.clear();
+    } else if (!chain_.empty()) {
       fit_chain(false);
       chain_.clear();
       chain_starts_mid_ = false;
     }
-    if (is_chord(*incoming)) {
+    if (candidate && is_chord(*incoming)) {
       chain_.push_back(*incoming);
     } else {
       ready_.push_back(*incoming);

@@ -3,10 +3,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "stiffpath/motion/biarc.hpp"
 #include "stiffpath/motion/junction.hpp"
+#include "stiffpath/motion/segment_limits.hpp"
 
 namespace stiffpath::motion {
 
@@ -118,6 +120,37 @@ CornerBlender::CornerBlender(PathSource& source, double corner_angle_rad, bool f
       corner_angle_rad_(corner_angle_rad),
       corner_chord_(2.0 * std::sin(0.5 * corner_angle_rad)) {}
 
+CornerBlender::CornerBlender(PathSource& source, double corner_angle_rad, ChordFitting fitting, const CornerSpeedModel& model)
+    : fitter_(fitting != ChordFitting::none ? std::make_unique<ChordFitter>(source, fitting == ChordFitting::merged) : nullptr),
+      source_(fitter_ ? *fitter_ : source),
+      corner_angle_rad_(corner_angle_rad),
+      corner_chord_(2.0 * std::sin(0.5 * corner_angle_rad)),
+      model_(model) {}
+
+double CornerBlender::speed_bound_at_held_start() const noexcept {
+  if (!(held_start_arc_radius_m_ > 0.0)) return held_start_speed_m_s_;
+  const MotionLimits& l = model_->limits;
+  PathSegment arc = make_arc(Vec2(held_start_arc_radius_m_, 0.0), Vec2(0.0, held_start_arc_radius_m_), Vec2::Zero(),
+                             0.5 * std::numbers::pi);
+  arc.feed_m_s = held_start_arc_feed_m_s_;
+  const double step = std::sqrt(l.max_jerk_m_s3 * model_->junction_time_s * held_start_arc_radius_m_);
+  return std::min({held_start_speed_m_s_, step, segment_limits(arc, l).max_velocity_m_s});
+}
+
+std::optional<CornerFillet> CornerBlender::chosen_fillet(const CornerFillet& full, const PathSegment& b, const Vec2& in,
+                                                         const Vec2& out, double tolerance_m, double max_trim_m) {
+  const PathSegment& a = *held_;
+  const MotionLimits& limits = model_->limits;
+  const double cap_in = std::min(a.feed_m_s, limits.max_velocity_m_s), cap_out = std::min(b.feed_m_s, limits.max_velocity_m_s);
+  const CornerInput corner{turn_angle_rad(in, out), full.trim_m, a.length_m, b.length_m, speed_bound_at_held_start(),
+                           cap_in, cap_out, std::min(a.feed_m_s, b.feed_m_s)};
+  const CornerChoice choice = choose_corner(corner, *model_);
+  next_start_speed_m_s_ = choice.pass_speed_m_s;
+  if (!(choice.trim_m > 0.0)) return std::nullopt;
+  if (choice.trim_m >= full.trim_m) return full;
+  return corner_fillet(a.end_m, in, out, tolerance_m, std::min(max_trim_m, choice.trim_m));
+}
+
 std::optional<PathSegment> CornerBlender::next() {
   while (ready_.empty()) {
     if (exhausted_) {
@@ -135,6 +168,8 @@ std::optional<PathSegment> CornerBlender::next() {
       held_ = *incoming;
       held_length_m_ = incoming->length_m;
       held_blended_ = false;
+      held_start_speed_m_s_ = 0.0;  // the program starts at rest
+      held_start_arc_radius_m_ = 0.0;
       continue;
     }
     PathSegment& a = *held_;
@@ -144,16 +179,27 @@ std::optional<PathSegment> CornerBlender::next() {
     const Vec2 in = end_tangent(a), out = start_tangent(b);
     std::optional<CornerFillet> fillet;
     const double max_trim = 0.5 * std::min(held_length_m_, b.length_m);
+    const double tolerance = std::min(a.blend_tolerance_m, b.blend_tolerance_m);
+    // What bounds the speed at b's start: a dwell stops, the rest is not known here.
+    next_start_speed_m_s_ = a.kind == SegmentKind::dwell || b.kind == SegmentKind::dwell
+                                ? 0.0
+                                : std::numeric_limits<double>::infinity();
     if (blendable && (out - in).norm() > corner_chord_) {  // |out − in| = 2·sin(φ/2)
-      fillet = corner_fillet(a.end_m, in, out, a.blend_tolerance_m, max_trim);
+      fillet = corner_fillet(a.end_m, in, out, tolerance, max_trim);
+      // A fillet bounded by the tolerance (a corner of the drawing) is chosen by its time; one bounded
+      // by half a line (a vertex of chord-flattened curve, whose neighbours' fillets it meets) keeps
+      // all its room: there the local model does not see the curvature steps between the fillets.
+      if (fillet && model_ && fillet->trim_m < max_trim * (1 - 1e-9)) {
+        fillet = chosen_fillet(*fillet, b, in, out, tolerance, max_trim);
+      }
     }
     // Where the fillet is bounded by half the shorter line and would leave more of the first line
     // than an absorbing arc takes: a biarc that takes all the corner before left of the first line
     // and half of the second.
     std::optional<std::array<PathSegment, 2>> pair;
     if (fillet && held_blended_ && a.length_m <= 0.75 * held_length_m_ && fillet->trim_m >= max_trim * (1 - 1e-9) &&
-        a.length_m - fillet->trim_m > absorbed_line_m(a.blend_tolerance_m)) {
-      pair = corner_biarc(a.end_m, in, out, a.length_m, 0.5 * b.length_m, a.blend_tolerance_m);
+        a.length_m - fillet->trim_m > absorbed_line_m(tolerance)) {
+      pair = corner_biarc(a.end_m, in, out, a.length_m, 0.5 * b.length_m, tolerance);
     }
     // What is left of the first line: kept, or (shorter than shortest_segment_m, as it is when the
     // biarc takes all of it) taken into the first arc, which then starts exactly where the line did.
@@ -178,7 +224,7 @@ std::optional<PathSegment> CornerBlender::next() {
       a.length_m = (a.end_m - a.start_m).norm();
       // If the two blends of a line leave (almost) nothing of it, the arc starts where the line did.
       const std::optional<PathSegment> absorbing =
-          a.length_m <= absorbed_line_m(a.blend_tolerance_m)
+          a.length_m <= absorbed_line_m(tolerance)
               ? arc_absorbing_line(a.start_m, in, *fillet, 0.25 * corner_angle_rad_)
               : std::nullopt;
       const bool keep_line = !absorbing && a.length_m >= shortest_segment_m;
@@ -192,8 +238,14 @@ std::optional<PathSegment> CornerBlender::next() {
     } else {
       ready_.push_back(a);
     }
+    const bool arc_ends_here = (pair || fillet) && ready_.back().kind == SegmentKind::arc;
+    next_start_arc_radius_m_ = arc_ends_here ? ready_.back().radius_m : 0.0;
+    next_start_arc_feed_m_s_ = arc_ends_here ? ready_.back().feed_m_s : 0.0;
     held_length_m_ = incoming->length_m;
     held_blended_ = pair || fillet;
+    held_start_speed_m_s_ = next_start_speed_m_s_;
+    held_start_arc_radius_m_ = next_start_arc_radius_m_;
+    held_start_arc_feed_m_s_ = next_start_arc_feed_m_s_;
     held_ = b;
   }
   PathSegment out = ready_.front();

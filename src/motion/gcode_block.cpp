@@ -1,8 +1,11 @@
 // Sorting a line's words into modal groups; every unsupported or duplicated word is a refusal naming it.
 #include "gcode_block.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+
+#include "stiffpath/motion/gcode_limits.hpp"
 
 namespace stiffpath::motion::detail {
 
@@ -26,8 +29,22 @@ struct Sorter {
   GcodeBlock& block;
   bool strict;
   std::vector<Error>& refusals;
+  std::size_t& omitted;
+  std::span<const double> ignored_m_codes;
 
-  void refuse(const GcodeWord& word, const std::string& message) { refusals.push_back(block.error(word, message)); }
+  [[nodiscard]] bool ignored(int code) const {
+    return !strict && std::any_of(ignored_m_codes.begin(), ignored_m_codes.end(),
+                                  [code](double m) { return code_tenths(m) == code; });
+  }
+
+  // Keeps the first refusals, counts the rest: a line of a million bad words costs no memory.
+  void refuse(const GcodeWord& word, const std::string& message) {
+    if (refusals.size() < max_reported_errors) {
+      refusals.push_back(block.error(word, message));
+    } else {
+      ++omitted;
+    }
+  }
 
   void assign(const GcodeWord*& slot, const GcodeWord& word, const char* group) {
     if (slot != nullptr) {
@@ -54,9 +71,8 @@ struct Sorter {
 
 const char* unsupported_g(int code) {
   switch (code) {
-    case 180: case 190: return "only the XY plane (G17) is supported";
+    case 171: case 181: case 191: return "only the XY, XZ and YZ planes (G17, G18, G19) are supported";
     case 410: case 411: case 420: case 421: return "cutter radius compensation is not supported";
-    case 430: case 431: case 432: return "tool length compensation is not supported";
     case 730: case 760: case 810: case 820: case 830: case 840: case 850: case 860: case 870: case 880:
     case 890: return "canned cycles are not supported";
     case 550: case 560: case 570: case 580: case 590: case 591: case 592: case 593:
@@ -81,7 +97,16 @@ void Sorter::g(const GcodeWord& w) {
     case 200: case 210: assign(block.units, w, "units (G20/G21)"); return;
     case 900: case 910: assign(block.distance, w, "distance mode (G90/G91)"); return;
     case 610: case 611: case 640: assign(block.path_mode, w, "path control (G61/G64)"); return;
-    case 170: case 400: case 490: case 540: case 800: case 940: return;  // the defaults: nothing to do
+    case 180: case 190:  // arcs in XZ / YZ: their XY projection
+      if (strict) return refuse(w, "only the XY plane (G17) is supported");
+      assign(block.plane, w, "plane (G17/G18/G19)");
+      return;
+    case 170: assign(block.plane, w, "plane (G17/G18/G19)"); return;
+    case 430: case 431: case 432:  // tool length offsets: they only move Z
+      if (strict) return refuse(w, "tool length compensation is not supported");
+      assign(block.tool_length, w, "tool length (G43/G49)");
+      return;
+    case 400: case 490: case 540: case 800: case 940: return;  // the defaults: nothing to do
     case 911:  // incremental arc centres: what I and J always are
       if (strict) refuse(w, "arc centre modes are not supported (I and J are always relative to the start)");
       return;
@@ -107,7 +132,9 @@ void Sorter::m(const GcodeWord& w) {
       if (strict) return refuse(w, "tool changes are not supported");
       block.tool = true;
       return;
-    default: refuse(w, "unsupported M code");
+    default:
+      if (ignored(code)) return;  // a vendor M-code that does nothing to the XY motion
+      refuse(w, "unsupported M code");
   }
 }
 
@@ -120,6 +147,8 @@ void Sorter::word(const GcodeWord& w) {
     case 'I': value(block.i, w); break;
     case 'J': value(block.j, w); break;
     case 'R': value(block.r, w); break;
+    case 'K': value(block.k, w); break;
+    case 'Q': value(block.q, w); break;
     case 'F': value(block.f, w); break;
     case 'S': value(block.s, w); break;
     case 'P': value(block.p, w); break;
@@ -135,8 +164,15 @@ void Sorter::word(const GcodeWord& w) {
     case 'O':
       if (strict) refuse(w, "program numbers and subroutines are not supported");
       break;  // a program number: nothing to do
+    case 'H':
+      if (strict) return refuse(w, "tool length offsets are not supported");
+      if (block.tool_length == nullptr) block.tool_length = &w;
+      break;
+    case 'E': case 'L':
+      if (block.ignored_m != nullptr) break;  // a parameter of the ignored M-code (M67 E0 Q50)
+      refuse(w, "unsupported word");
+      break;
     case 'A': case 'B': case 'C': case 'U': case 'V': case 'W': refuse(w, "only the X and Y axes exist"); break;
-    case 'K': refuse(w, "arcs are in the XY plane; give their centre with I and J"); break;
     default: refuse(w, "unsupported word");
   }
 }
@@ -144,10 +180,14 @@ void Sorter::word(const GcodeWord& w) {
 }  // namespace
 
 GcodeBlock parse_block(std::span<const GcodeWord> words, const SourceLocation& where, bool strict,
-                       std::vector<Error>& refusals) {
+                       std::span<const double> ignored_m_codes, std::vector<Error>& refusals, std::size_t& omitted) {
   GcodeBlock block;
   block.where = &where;
-  Sorter sorter{block, strict, refusals};
+  Sorter sorter{block, strict, refusals, omitted, ignored_m_codes};
+  // The ignored M-code first: its P, Q, E and L words may come before it on the line.
+  for (const GcodeWord& word : words) {
+    if (word.letter == 'M' && block.ignored_m == nullptr && sorter.ignored(code_tenths(word.value))) block.ignored_m = &word;
+  }
   for (const GcodeWord& word : words) sorter.word(word);
   return block;
 }

@@ -17,6 +17,7 @@ int code_tenths(double value) noexcept;
 struct GcodeBlock {
   const GcodeWord* motion = nullptr;      //!< G0, G1, G2, G3
   const GcodeWord* non_modal = nullptr;   //!< G4 (dwell), G28/G30 (home), G92 (coordinate offset)
+  const GcodeWord* plane = nullptr;       //!< G17, G18, G19
   const GcodeWord* units = nullptr;       //!< G20, G21
   const GcodeWord* distance = nullptr;    //!< G90, G91
   const GcodeWord* path_mode = nullptr;   //!< G61, G61.1, G64
@@ -29,10 +30,14 @@ struct GcodeBlock {
   const GcodeWord* i = nullptr;
   const GcodeWord* j = nullptr;
   const GcodeWord* r = nullptr;
+  const GcodeWord* k = nullptr;           //!< an arc's centre in Z: only for G18/G19 arcs (the interpreter checks)
+  const GcodeWord* q = nullptr;           //!< G64 Q: the tolerance for merging short lines
   const GcodeWord* f = nullptr;
   const GcodeWord* s = nullptr;
   const GcodeWord* p = nullptr;
   bool tool = false;                      //!< a T word or M6 (ignored)
+  const GcodeWord* tool_length = nullptr; //!< G43, G43.1, G43.2 or an H word (ignored)
+  const GcodeWord* ignored_m = nullptr;   //!< an M-code of GcodeOptions::ignored_m_codes (ignored, with its P/Q/E/L)
   const SourceLocation* where = nullptr;  //!< file and line (column 0); outlives the block
 
   //! The Error at the word's column: "<word>: message".
@@ -43,10 +48,12 @@ struct GcodeBlock {
 };
 
 //! Sorts the words. Every unsupported or duplicated word (a second motion word, two words of one
-//! modal group, an axis given twice, other planes, cutter compensation, canned cycles …, and in
-//! `strict` mode Z, T, O, M6, M0/M1, G28/G30, G91.1, M106/M107, M62/M63) is appended to `refusals`,
-//! one per word; the block is only meant to be executed when none was added.
+//! modal group, an axis given twice, cutter compensation, canned cycles …, and in `strict` mode Z,
+//! T, H, O, M6, M0/M1, G28/G30, G43, G91.1, M106/M107, M62/M63, the ignored M-codes) is a refusal,
+//! one per word: the first up to max_reported_errors − refusals.size() are appended to `refusals`,
+//! the others only counted in `omitted`. The block is only meant to be executed when none was found.
+//! `ignored_m_codes`: GcodeOptions::ignored_m_codes.
 GcodeBlock parse_block(std::span<const GcodeWord> words, const SourceLocation& where, bool strict,
-                       std::vector<Error>& refusals);
+                       std::span<const double> ignored_m_codes, std::vector<Error>& refusals, std::size_t& omitted);
 
 }  // namespace stiffpath::motion::detail

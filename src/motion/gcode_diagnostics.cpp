@@ -18,6 +18,11 @@ const char* to_string(GcodeWarningKind kind) noexcept {
     case GcodeWarningKind::long_dwell: return "long_dwell";
     case GcodeWarningKind::fan_as_laser: return "fan_as_laser";
     case GcodeWarningKind::output_as_laser: return "output_as_laser";
+    case GcodeWarningKind::output_ignored: return "output_ignored";
+    case GcodeWarningKind::tool_length_ignored: return "tool_length_ignored";
+    case GcodeWarningKind::plane_arc_as_line: return "plane_arc_as_line";
+    case GcodeWarningKind::m_code_ignored: return "m_code_ignored";
+    case GcodeWarningKind::start_at_home: return "start_at_home";
   }
   return "unknown";
 }

@@ -14,6 +14,8 @@ using detail::GcodeBlock;
 namespace {
 constexpr double inch_m = 0.0254;
 constexpr double max_coordinate_mm = max_coordinate_m * 1e3;
+// The share of P that merging short lines may use (G64 Q is capped at it); the rest is the blends'.
+constexpr double merge_share = 0.5;
 }  // namespace
 
 GcodeInterpreter::GcodeInterpreter(const GcodeOptions& options, GcodeWarnings& warnings)
@@ -21,6 +23,7 @@ GcodeInterpreter::GcodeInterpreter(const GcodeOptions& options, GcodeWarnings& w
       warnings_(warnings),
       mode_(options.initial_mode),
       blend_tolerance_m_(options.default_blend_tolerance_m),
+      merge_tolerance_m_(merge_share * options.default_blend_tolerance_m),
       position_m_(options.start_position_m) {}
 
 void GcodeInterpreter::warn(GcodeWarningKind kind, const GcodeBlock& b, const std::string& message) {
@@ -35,6 +38,14 @@ void GcodeInterpreter::execute(const GcodeBlock& b, std::deque<PathSegment>& out
   if (b.z != nullptr) {
     warn(GcodeWarningKind::z_ignored, b, "Z words are ignored (the robot has no Z axis); a move with only Z takes no time");
   }
+  if (b.tool_length != nullptr) {
+    warn(GcodeWarningKind::tool_length_ignored, b, "tool length offsets (G43, H) are ignored: they only concern Z");
+  }
+  if (b.ignored_m != nullptr) {
+    warn(GcodeWarningKind::m_code_ignored, b,
+         fmt::format("{} and the other configured vendor M-codes are ignored (they do not move the robot)",
+                     word_name(*b.ignored_m)));
+  }
   set_modes(b);
 
   bool arc_move = false;
@@ -46,7 +57,7 @@ void GcodeInterpreter::execute(const GcodeBlock& b, std::deque<PathSegment>& out
     } else if (non_modal == 280 || non_modal == 300) {
       home(b, out);
     } else {
-      set_offset(b);
+      set_offset(b, out);
     }
   } else {
     if (b.motion != nullptr) motion_ = code_tenths(b.motion->value);
@@ -65,12 +76,19 @@ void GcodeInterpreter::execute(const GcodeBlock& b, std::deque<PathSegment>& out
   for (const GcodeWord* word : {b.i, b.j, b.r}) {
     if (word != nullptr && !arc_move) b.fail(*word, "I, J and R belong to G2/G3 arc moves");
   }
-  if (b.p != nullptr) {
-    const int pm = b.path_mode != nullptr ? code_tenths(b.path_mode->value) : -1;
+  if (b.k != nullptr && !(arc_move && plane_ != 170)) {
+    b.fail(*b.k, arc_move ? "arcs are in the XY plane; give their centre with I and J"
+                          : "K belongs to G2/G3 arcs in the XZ (G18) or YZ (G19) plane");
+  }
+  const int pm = b.path_mode != nullptr ? code_tenths(b.path_mode->value) : -1;
+  if (b.p != nullptr && b.ignored_m == nullptr) {
     const int laser = b.laser != nullptr ? code_tenths(b.laser->value) : -1;
-    if (non_modal != 40 && pm != 640 && laser != 620 && laser != 630) {
-      b.fail(*b.p, "P belongs to G4 (dwell), G64 (blend tolerance) or M62/M63 (output number)");
+    if (non_modal != 40 && pm != 640 && laser != 620 && laser != 630 && laser != 1060 && laser != 1070) {
+      b.fail(*b.p, "P belongs to G4 (dwell), G64 (blend tolerance) or M62/M63, M106/M107 (output number)");
     }
+  }
+  if (b.q != nullptr && b.ignored_m == nullptr && pm != 640) {
+    b.fail(*b.q, "Q belongs to G64 (the tolerance for merging short lines)");
   }
   program_stop(b, out);
   if (b.stop != nullptr) ended_ = true;
@@ -90,17 +108,23 @@ void GcodeInterpreter::set_feed(const GcodeBlock& b) {
 }
 
 void GcodeInterpreter::set_modes(const GcodeBlock& b) {
+  if (b.plane != nullptr) plane_ = code_tenths(b.plane->value);
   if (b.path_mode != nullptr) {
     if (code_tenths(b.path_mode->value) == 640) {
       mode_ = JunctionMode::blend;
       blend_tolerance_m_ = options_.default_blend_tolerance_m;
-      if (b.p != nullptr) {
-        if (b.p->value < 0.0) b.fail(*b.p, "blend tolerance must not be negative");
-        if (b.p->value * scale_m_ > max_blend_tolerance_m) {
-          b.fail(*b.p, fmt::format("blend tolerance above the largest accepted, {:g} mm", max_blend_tolerance_m * 1e3));
+      for (const GcodeWord* word : {b.p, b.q}) {
+        if (word == nullptr) continue;
+        if (word->value < 0.0) b.fail(*word, "blend tolerance must not be negative");
+        if (word->value * scale_m_ > max_blend_tolerance_m) {
+          b.fail(*word, fmt::format("blend tolerance above the largest accepted, {:g} mm", max_blend_tolerance_m * 1e3));
         }
-        blend_tolerance_m_ = b.p->value * scale_m_;
       }
+      if (b.p != nullptr) blend_tolerance_m_ = b.p->value * scale_m_;
+      // Q (LinuxCNC's naive CAM tolerance, P when not given; Q0: no merging) merges short lines; half
+      // of P at most, so that the merged lines' blends keep the path within P of the program.
+      merge_tolerance_m_ = merge_share * blend_tolerance_m_;
+      if (b.q != nullptr) merge_tolerance_m_ = std::min(merge_tolerance_m_, b.q->value * scale_m_);
     } else {
       mode_ = JunctionMode::exact_stop;
     }
@@ -121,19 +145,47 @@ void GcodeInterpreter::dwell(const GcodeBlock& b, std::deque<PathSegment>& out) 
   if (seconds > long_dwell_warning_s) {
     warn(GcodeWarningKind::long_dwell, b, fmt::format("a dwell of {:g} s, over a minute (G4 P is read in {})", seconds, units));
   }
-  if (!position_m_ || seconds == 0.0) return;  // before the first move nothing is timed
-  PathSegment segment = make_dwell(*position_m_, seconds);
+  // G4 P0 is an exact stop (CAM writes it where G64 must not blend); before the first move the dwell
+  // waits for the robot's position, and takes its time there.
+  PathSegment segment = make_dwell(position_m_.value_or(Vec2::Zero()), seconds);
   segment.mode = JunctionMode::exact_stop;
-  emit(segment, b, out);
+  std::deque<PathSegment> one;
+  emit(segment, b, one);
+  (position_m_ ? out : waiting_).push_back(one.front());
 }
 
-void GcodeInterpreter::set_offset(const GcodeBlock& b) {
+void GcodeInterpreter::locate(const Vec2& position_m, std::deque<PathSegment>& out) {
+  position_m_ = position_m;
+  for (PathSegment& dwell : waiting_) {
+    dwell.start_m = dwell.end_m = position_m;
+    out.push_back(dwell);
+  }
+  waiting_.clear();
+}
+
+void GcodeInterpreter::finish(std::deque<PathSegment>& out) {
+  if (waiting_.empty()) return;
+  if (options_.home_position_m) {
+    locate(*options_.home_position_m, out);
+  } else {
+    waiting_.clear();  // no position at all: a program without motion has nothing to time
+  }
+}
+
+void GcodeInterpreter::set_offset(const GcodeBlock& b, std::deque<PathSegment>& out) {
   if (!b.has_axis()) {
     if (b.z != nullptr) return;  // G92 Z: the robot has no Z axis
     b.fail(*b.non_modal, "G92 needs X and/or Y");
   }
-  if (!position_m_) {
-    b.fail(*b.non_modal, "the current position is unknown (give the start position, or move before G92)");
+  if (!position_m_) {  // the robot stands where it started: its home unless a start position is given
+    if (!options_.home_position_m) {
+      b.fail(*b.non_modal, "the current position is unknown (give the start or the home position, or move before G92)");
+    }
+    const Vec2& home = *options_.home_position_m;
+    warn(GcodeWarningKind::start_at_home, b,
+         fmt::format("G92 before the first move: the robot starts at its home position ({:g}, {:g}) mm", home.x() * 1e3,
+                     home.y() * 1e3));
+    locate(home, out);
   }
   const GcodeWord* words[2] = {b.x, b.y};
   for (int k = 0; k < 2; ++k) {
@@ -176,7 +228,7 @@ Vec2 GcodeInterpreter::target(const GcodeBlock& b) const {
 
 void GcodeInterpreter::rapid_to(const Vec2& end, const GcodeBlock& b, std::deque<PathSegment>& out) {
   if (!position_m_) {  // the robot is assumed to stand there already
-    position_m_ = end;
+    locate(end, out);
     return;
   }
   if ((end - *position_m_).norm() < shortest_segment_m) return;
@@ -210,13 +262,18 @@ void GcodeInterpreter::move(const GcodeBlock& b, const GcodeWord& anchor, std::d
   if (!position_m_) {  // the robot is assumed to stand at the first absolute target
     if (arc) b.fail(anchor, "an arc cannot be the first move: its start point is unknown (move there first)");
     require_start(b, anchor);
-    position_m_ = target(b);
+    locate(target(b), out);
     return;
   }
   const Vec2 start = *position_m_;
   const Vec2 end = target(b);
   PathSegment segment;
-  if (arc) {
+  if (arc && plane_ != 170) {  // an arc in XZ or YZ: its XY projection, along the line between its ends
+    warn(GcodeWarningKind::plane_arc_as_line, b,
+         "arcs in the XZ (G18) and YZ (G19) planes move along the straight line between their ends in XY");
+    if ((end - start).norm() < shortest_segment_m) return;
+    segment = make_line(start, end);
+  } else if (arc) {
     segment = build_arc(b, anchor, motion_ == 20, start, end, scale_m_, options_.arc_tolerance_m);
   } else {
     // A move below 1 nm is dropped; the position stays, so the next move starts where the last ended.
@@ -240,11 +297,14 @@ void GcodeInterpreter::program_stop(const GcodeBlock& b, std::deque<PathSegment>
   warn(GcodeWarningKind::program_stop, b,
        dwell_s ? fmt::format("M0/M1 are taken as a dwell of {:g} s with the laser off", *dwell_s)
                : std::string("M0/M1: the robot comes to rest and the job goes on at once (the pause is not in the output)"));
-  if (!position_m_) return;
-  PathSegment segment = make_dwell(*position_m_, dwell_s.value_or(0.0));
+  PathSegment segment = make_dwell(position_m_.value_or(Vec2::Zero()), dwell_s.value_or(0.0));
   segment.line = b.where->line;
   segment.mode = JunctionMode::exact_stop;
-  out.push_back(segment);  // laser off, power 0
+  if (position_m_) {
+    out.push_back(segment);  // laser off, power 0
+  } else if (dwell_s) {
+    waiting_.push_back(segment);  // before the first move: the dwell takes its time where the robot stands
+  }
 }
 
 void GcodeInterpreter::emit(PathSegment segment, const GcodeBlock& b, std::deque<PathSegment>& out) {
@@ -260,6 +320,7 @@ void GcodeInterpreter::emit(PathSegment segment, const GcodeBlock& b, std::deque
     }
   }
   segment.blend_tolerance_m = blend_tolerance_m_;
+  segment.merge_tolerance_m = segment.mode == JunctionMode::blend ? merge_tolerance_m_ : 0.0;
   out.push_back(segment);
 }
 

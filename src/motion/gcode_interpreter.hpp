@@ -19,6 +19,10 @@ class GcodeInterpreter {
   //! Executes one block, appending the segments it produces (none, one, or two for a G28 through
   //! an intermediate point, plus a stop) to `out`. Throws Error naming the word.
   void execute(const detail::GcodeBlock& block, std::deque<PathSegment>& out);
+  //! At the end of the program: the dwells that waited for a position (a program that never moves
+  //! but has a start or home position dwells there; otherwise they are dropped with the program's
+  //! lack of motion).
+  void finish(std::deque<PathSegment>& out);
   [[nodiscard]] bool ended() const noexcept { return ended_; }
 
  private:
@@ -28,7 +32,11 @@ class GcodeInterpreter {
   void set_laser(const detail::GcodeBlock& block);
   void set_modes(const detail::GcodeBlock& block);
   void dwell(const detail::GcodeBlock& block, std::deque<PathSegment>& out);
-  void set_offset(const detail::GcodeBlock& block);
+  void set_offset(const detail::GcodeBlock& block, std::deque<PathSegment>& out);
+  //! The robot's position becomes known: the dwells programmed before it take their time there.
+  void locate(const Vec2& position_m, std::deque<PathSegment>& out);
+  //! What an output word (M62/M63 P, M106/M107 P) switches: true for the laser.
+  [[nodiscard]] bool drives_laser(OutputKind kind, const detail::GcodeBlock& block) const;
   void home(const detail::GcodeBlock& block, std::deque<PathSegment>& out);
   void move(const detail::GcodeBlock& block, const GcodeWord& anchor, std::deque<PathSegment>& out);
   void rapid_to(const Vec2& end, const detail::GcodeBlock& block, std::deque<PathSegment>& out);
@@ -53,6 +61,9 @@ class GcodeInterpreter {
   double fixed_power_ = 0.0;       // M106 S / 255, or 1 for M62
   JunctionMode mode_;
   double blend_tolerance_m_;
+  double merge_tolerance_m_;       // G64 Q, at most half of P (PathSegment::merge_tolerance_m)
+  int plane_ = 170;                // G17, G18, G19 in tenths
+  std::deque<PathSegment> waiting_;  // dwells before the position is known, without their point
   Vec2 offset_m_ = Vec2::Zero();   // G92 offset on top of the work offset
   std::optional<Vec2> position_m_;
   bool ended_ = false;

@@ -1,5 +1,6 @@
 // The laser words of the G-code dialect: S, M3/M4 (constant and dynamic power), M5, and M106/M107, M62/M63 mapped to laser on/off.
 #include <algorithm>
+#include <cmath>
 #include <fmt/format.h>
 
 #include "gcode_interpreter.hpp"
@@ -14,8 +15,30 @@ const char* const fan_message = "M106/M107 (Marlin's fan output) are read as las
 const char* const output_message = "M62/M63 (synchronised digital output) are read as laser on at full power/off";
 }  // namespace
 
+bool GcodeInterpreter::drives_laser(OutputKind kind, const GcodeBlock& b) const {
+  const int number = b.p != nullptr ? static_cast<int>(std::lround(b.p->value)) : 0;
+  if (b.p != nullptr && (b.p->value < 0.0 || b.p->value != std::round(b.p->value))) {
+    b.fail(*b.p, "an output number is a whole number, 0 or more");
+  }
+  for (const OutputAssignment& output : options_.outputs) {
+    if (output.kind == kind && output.number == number) return output.role == OutputRole::laser;
+  }
+  return true;  // unlisted outputs drive the laser
+}
+
 void GcodeInterpreter::set_laser(const GcodeBlock& b) {
-  const int code = b.laser != nullptr ? code_tenths(b.laser->value) : -1;
+  int code = b.laser != nullptr ? code_tenths(b.laser->value) : -1;
+  const bool fan = code == 1060 || code == 1070, output = code == 620 || code == 630;
+  if ((fan || output) && !drives_laser(fan ? OutputKind::fan : OutputKind::digital, b)) {
+    warn(GcodeWarningKind::output_ignored, b,
+         fmt::format("M62/M63 and M106/M107 of outputs configured as not the laser are ignored (here {} P{})",
+                     word_name(*b.laser), b.p != nullptr ? b.p->value : 0.0));
+    if (fan) {  // the S of an ignored fan is the fan's, not the laser's
+      if (b.s != nullptr && b.s->value < 0.0) b.fail(*b.s, "fan speed must not be negative");
+      return;
+    }
+    code = -1;  // an ignored digital output: an S on its line is still the laser's
+  }
   if (b.s != nullptr) {
     if (b.s->value < 0.0) b.fail(*b.s, "laser power must not be negative");
     const double full = code == 1060 ? fan_s_max : options_.s_max;

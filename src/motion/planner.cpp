@@ -36,11 +36,14 @@ void Planner::add(const PathSegment& segment) {
       extend_run(*open_, previous_, previous_limits_, segment, limits, limits_, options_.junction, options_.runs)) {
     members_.push_back({segment, offset});
   } else {
+    SpeedLimit cause = SpeedLimit::rest;
     const double junction =
-        started_ ? junction_speed_limit(previous_, previous_limits_, segment, limits, limits_, options_.junction) : 0.0;
+        started_ ? junction_speed_limit(previous_, previous_limits_, segment, limits, limits_, options_.junction, &cause)
+                 : 0.0;
     if (open_) close_run();
     open_ = start_run(segment, limits, options_.runs);
     open_entry_limit_m_s_ = junction;
+    open_entry_cause_ = cause;
     members_.push_back({segment, 0.0});
   }
   started_ = true;
@@ -61,12 +64,24 @@ void Planner::close_run() {
   node.line = members_[members_.size() - run.segments].path.line;
   // The junction rules bound the speed by both adjacent segments' caps; a run keeps the lowest cap
   // of its segments, so the junction also takes the caps of both runs.
-  node.entry_limit_m_s = std::min(open_entry_limit_m_s_, node.limits.max_velocity_m_s);
-  if (window_.size() + statistics_.runs > 0) node.entry_limit_m_s = std::min(node.entry_limit_m_s, last_cap_m_s_);
+  // Which cap: below every member's feed it is an arc's (or a tangent junction's inside the run).
+  const double feed_cap = std::min(limits_.max_velocity_m_s, run.lowest_feed_m_s);
+  const SpeedLimit cap_cause = node.limits.max_velocity_m_s < feed_cap ? SpeedLimit::arc_speed : SpeedLimit::feed;
+  node.entry_limit_m_s = open_entry_limit_m_s_;
+  node.entry_cause = open_entry_cause_;
+  if (node.limits.max_velocity_m_s < node.entry_limit_m_s) {
+    node.entry_limit_m_s = node.limits.max_velocity_m_s;
+    node.entry_cause = cap_cause;
+  }
+  if (window_.size() + statistics_.runs > 0 && last_cap_m_s_ < node.entry_limit_m_s) {
+    node.entry_limit_m_s = last_cap_m_s_;
+    node.entry_cause = last_cap_cause_;
+  }
   if (!node.dwell) {
     node.reach_from_rest_m_s = reachable_speed(node.length_m, 0.0, node.limits.max_acceleration_m_s2, node.limits.max_jerk_m_s3);
   }
   last_cap_m_s_ = node.dwell ? 0.0 : node.limits.max_velocity_m_s;
+  last_cap_cause_ = node.dwell ? SpeedLimit::dwell : cap_cause;
   // A run whose own junction rules bound its entry even if it had to stop at its end is pinned:
   // pass now, so that the runs before it are released without waiting (each run is visited by at
   // most one such pass, the one that releases it).
@@ -123,6 +138,14 @@ void Planner::begin_release(const Merge& merge) {
   release.limits = node.limits;
   release.members_left = node.members;
   release.speed_m_s = entry_speed_m_s_;
+  // The rules that bind the speed at the profile's ends (a valley there), for the account of lost time.
+  const auto binds = [](double speed, double bound) { return speed >= bound * (1.0 - 1e-9); };
+  if (binds(entry_speed_m_s_, node.entry_limit_m_s)) release.entry_limit = node.entry_cause;
+  if (merge.runs < window_.size()) {
+    if (binds(exit, window_[merge.runs].entry_limit_m_s)) release.exit_limit = window_[merge.runs].entry_cause;
+  } else if (exhausted_) {
+    release.exit_limit = SpeedLimit::rest;
+  }
   if (node.dwell) {
     release.profile.phase_s[3] = node.dwell_s;
     release.profile.duration_s = node.dwell_s;
@@ -236,6 +259,8 @@ PlannedSegment Planner::emit() {
   planned.entry_speed_m_s = r.speed_m_s;
   planned.exit_speed_m_s = last ? p.end_velocity_m_s : cruising ? p.peak_velocity_m_s : p.state_at(end_s).v_m_s;
   planned.index = statistics_.segments;
+  planned.entry_limit = r.entry_limit;
+  planned.exit_limit = r.exit_limit;
   clock_s_ += planned.duration_s;
   r.profile_time_s = end_s;
   r.speed_m_s = planned.exit_speed_m_s;

@@ -34,7 +34,8 @@ bool within_run_bands(const SegmentLimits& low, const SegmentLimits& high, const
 }
 
 Run start_run(const PathSegment& segment, const SegmentLimits& limits, const RunRules& rules) noexcept {
-  return Run{limits, limits, segment.length_m, 1, segment.kind == SegmentKind::dwell, closing_length(limits, rules)};
+  return Run{limits, limits, segment.length_m, 1, segment.kind == SegmentKind::dwell, closing_length(limits, rules),
+             segment.feed_m_s};
 }
 
 bool extend_run(Run& run, const PathSegment& last, const SegmentLimits& last_limits, const PathSegment& next,
@@ -58,6 +59,7 @@ bool extend_run(Run& run, const PathSegment& last, const SegmentLimits& last_lim
   }
   run.low = low;
   run.high = high;
+  run.lowest_feed_m_s = std::min(run.lowest_feed_m_s, next.feed_m_s);
   run.length_m += next.length_m;
   ++run.segments;
   return true;

@@ -3,19 +3,32 @@
 
 namespace stiffpath::motion {
 
+std::unique_ptr<CornerBlender> make_blender(PathSource& source, const PlanOptions& options) {
+  const CornerSpeedModel model{options.limits, options.planner.junction.junction_time_s};
+  const JunctionRules& rules = options.planner.junction;
+  const ChordFitting fitting = rules.fit_chords          ? ChordFitting::all
+                               : rules.fit_merged_chords ? ChordFitting::merged
+                                                         : ChordFitting::none;
+  return std::make_unique<CornerBlender>(source, rules.corner_angle_rad, fitting, model);
+}
+
 TrajectoryStream::TrajectoryStream(const std::filesystem::path& gcode, const PlanOptions& options)
     : reader_(std::make_unique<GcodeReader>(gcode, options.gcode)),
-      blender_(std::make_unique<CornerBlender>(*reader_, options.planner.junction.corner_angle_rad,
-                                                options.planner.junction.fit_chords)),
+      clock_(std::make_unique<FeedClock>(*reader_, options.limits)),
+      merger_(std::make_unique<LineMerger>(*clock_)),
+      blender_(make_blender(*merger_, options)),
       planner_(std::make_unique<Planner>(*blender_, options.limits, options.planner)),
-      sampler_(std::make_unique<Sampler>(*planner_, options.rate_hz)) {}
+      tap_(std::make_unique<SlowdownTap>(*planner_, *clock_, options.limits)),
+      sampler_(std::make_unique<Sampler>(*tap_, options.rate_hz)) {}
 
 TrajectoryStream::TrajectoryStream(std::istream& in, std::string label, const PlanOptions& options)
     : reader_(std::make_unique<GcodeReader>(in, std::move(label), options.gcode)),
-      blender_(std::make_unique<CornerBlender>(*reader_, options.planner.junction.corner_angle_rad,
-                                                options.planner.junction.fit_chords)),
+      clock_(std::make_unique<FeedClock>(*reader_, options.limits)),
+      merger_(std::make_unique<LineMerger>(*clock_)),
+      blender_(make_blender(*merger_, options)),
       planner_(std::make_unique<Planner>(*blender_, options.limits, options.planner)),
-      sampler_(std::make_unique<Sampler>(*planner_, options.rate_hz)) {}
+      tap_(std::make_unique<SlowdownTap>(*planner_, *clock_, options.limits)),
+      sampler_(std::make_unique<Sampler>(*tap_, options.rate_hz)) {}
 
 TrajectoryStream::~TrajectoryStream() = default;
 
@@ -23,13 +36,15 @@ std::optional<TrajectorySample> TrajectoryStream::next() { return sampler_->next
 
 namespace {
 Trajectory plan_from(GcodeReader& reader, const PlanOptions& options) {
-  CornerBlender blender(reader, options.planner.junction.corner_angle_rad, options.planner.junction.fit_chords);
-  return Trajectory::plan(blender, options.limits, options.planner);
+  LineMerger merger(reader);
+  const auto blender = make_blender(merger, options);
+  return Trajectory::plan(*blender, options.limits, options.planner);
 }
 
 PlanSize measure(GcodeReader& reader, const PlanOptions& options) {
-  CornerBlender blender(reader, options.planner.junction.corner_angle_rad, options.planner.junction.fit_chords);
-  Planner planner(blender, options.limits, options.planner);
+  LineMerger merger(reader);
+  const auto blender = make_blender(merger, options);
+  Planner planner(*blender, options.limits, options.planner);
   PlanSize size;
   while (auto segment = planner.next()) {
     ++size.segments;

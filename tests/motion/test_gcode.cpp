@@ -28,7 +28,8 @@ TEST(Gcode, ThesisXMotionInTheRobotFrame) {
   EXPECT_FALSE(s.dynamic_power);
   EXPECT_EQ(s.line, 4);
   EXPECT_FALSE(s.rapid);
-  EXPECT_EQ(s.mode, JunctionMode::exact_stop);
+  EXPECT_EQ(s.mode, JunctionMode::blend);  // a program that names no mode is blended (the thesis's own file says G61)
+  EXPECT_EQ(s.blend_tolerance_m, default_blend_tolerance_m);
 }
 
 TEST(Gcode, CompactLowerCaseCommentsLineNumbersAndDelimiters) {
@@ -138,7 +139,7 @@ TEST(Gcode, AcceptedNoOpWordsOfCamPreambles) {
 TEST(Gcode, ErrorsNameFileLineColumnAndWord) {
   EXPECT_EQ(gcode_error("G0 X0 Y0\n  G1 X5 F100 G2 I1\n"),
             "job.gcode:2:14: G2: a second motion word on one line (G1 at column 3)");
-  EXPECT_EQ(gcode_error("g17\ng19\n"), "job.gcode:2:1: G19: only the XY plane (G17) is supported");
+  EXPECT_EQ(gcode_error("g17\ng19.1\n"), "job.gcode:2:1: G19.1: only the XY, XZ and YZ planes (G17, G18, G19) are supported");
 }
 
 }  // namespace

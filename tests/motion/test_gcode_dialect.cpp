@@ -252,7 +252,7 @@ TEST(GcodeDialect, WarningsReachTheCallbackOnceAtTheEndAndNotAfterARefusal) {
 }
 
 TEST(GcodeDialect, AfterARefusalNothingMoreIsHandedOutAndAllRefusalsComeTogether) {
-  std::istringstream in("G0 X200 Y0\nG1 X210 F600\nG41\nG1 X220\nG1 X230 K1\nG19\n");
+  std::istringstream in("G0 X200 Y0\nG1 X210 F600\nG41\nG1 X220\nG1 X230 K1\nG19.1\n");
   GcodeReader reader(in, "job.gcode");
   ASSERT_TRUE(reader.next());  // the move before the refused line
   try {

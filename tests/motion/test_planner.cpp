@@ -44,7 +44,7 @@ std::vector<PathSegment> programmed_segments(const std::string& gcode) {
 TEST(PlannerRandom, ExactStopProgramsPassEveryProgrammedPointAndEndAtRest) {
   std::mt19937_64 rng(23);
   for (int p = 0; p < std::max(4, test::random_cases(400) / 20); ++p) {
-    std::string gcode = test::random_program(rng, 60);
+    std::string gcode = "G61\n" + test::random_program(rng, 60);  // before the program's first mode too
     for (std::size_t at = gcode.find("G64"); at != std::string::npos; at = gcode.find("G64", at)) {
       gcode.replace(at, gcode.find('\n', at) - at, "G61");  // no blending anywhere
     }
@@ -75,13 +75,14 @@ struct ReferenceRun {
 std::vector<ReferenceRun> reference_runs(const std::string& gcode, const PlanOptions& options) {
   std::istringstream in(gcode);
   GcodeReader reader(in, "job.gcode", options.gcode);
-  CornerBlender blender(reader, options.planner.junction.corner_angle_rad);
+  LineMerger merger(reader);
+  const std::unique_ptr<CornerBlender> blender = make_blender(merger, options);  // the path stages of a plan
   std::vector<ReferenceRun> runs;
   std::optional<Run> open;
   PathSegment previous;
   SegmentLimits previous_limits;
   double previous_cap = 0.0;
-  while (auto s = blender.next()) {
+  while (auto s = blender->next()) {
     if (s->kind != SegmentKind::dwell && !(s->length_m > 0.0)) continue;
     const SegmentLimits lim = segment_limits(*s, options.limits);
     if (open && extend_run(*open, previous, previous_limits, *s, lim, options.limits, options.planner.junction,

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <deque>
 #include <optional>
 #include <vector>
@@ -9,6 +10,11 @@
 #include "stiffpath/motion/path_source.hpp"
 
 namespace stiffpath::motion {
+
+//! Which chains of G64 chords the ChordFitter fits: none, only chains of merged lines (LineMerger's:
+//! a staircase or fine chords straightened within part of P, `--chords auto`), or every chain
+//! (`--chords fit`).
+enum class ChordFitting : std::uint8_t { none, merged, all };
 
 //! Longest chain of chords fitted at once; a longer chain is fitted in pieces joined at a chord's
 //! midpoint (tangent there, with a curvature step like any stretch end).
@@ -38,7 +44,8 @@ inline constexpr std::size_t max_fitted_chain = 4096;
 //! Each piece carries its chord's feed, laser power, source line and mode. Holds one chain.
 class ChordFitter final : public PathSource {
  public:
-  explicit ChordFitter(PathSource& source);
+  //! `merged_only`: a chain holds only merged lines (PathSegment::merged), ChordFitting::merged.
+  explicit ChordFitter(PathSource& source, bool merged_only = false);
   std::optional<PathSegment> next() override;
 
  private:
@@ -47,6 +54,7 @@ class ChordFitter final : public PathSource {
   void fit_chain(bool ends_mid);
 
   PathSource& source_;
+  bool merged_only_ = false;
   std::vector<PathSegment> chain_;
   bool chain_starts_mid_ = false;  // the first chord's first half was emitted with the chain before
   std::deque<PathSegment> ready_;

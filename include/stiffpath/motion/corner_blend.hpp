@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "stiffpath/motion/chord_fit.hpp"
+#include "stiffpath/motion/corner_choice.hpp"
 #include "stiffpath/motion/path_source.hpp"
 
 namespace stiffpath::motion {
@@ -58,21 +59,46 @@ std::optional<std::array<PathSegment, 2>> corner_biarc(const Vec2& corner_m, con
 //! piece of line stays between the blends of a chord-flattened curve with uneven chords, and the
 //! curvature steps from one corner's arcs to the next instead of to zero and back. Holds at most
 //! two segments.
-//! With `fit_chords` a ChordFitter in front first turns chains of short chords into
-//! tangent biarcs within P, so only the vertices it leaves as corners get fillets.
+//! With `fit_chords` (ChordFitting::all) a ChordFitter in front first turns chains of short chords into
+//! tangent biarcs within P, so only the vertices it leaves as corners get fillets; with
+//! ChordFitting::merged it does so for chains of merged lines only.
+//! The fillet's tolerance is the lower of both lines' (a merged line's is lowered by its merge, see
+//! LineMerger). With a CornerSpeedModel (the planner's limits), each fillet between two lines is
+//! chosen by choose_corner: the trim among d_max·2⁻ᵏ that loses least time, or no fillet where even
+//! the best loses more than the corner without one (then passed at its velocity-step speed, about a
+//! stop), so that a blend is never slower than the stop it replaces. The speed the first line can
+//! have at the corner is bounded by its cap and by what it reaches over its length from the speed
+//! bound at its start (the previous corner's pass speed). Without a model every fillet takes the
+//! whole tolerance.
 class CornerBlender final : public PathSource {
  public:
   CornerBlender(PathSource& source, double corner_angle_rad, bool fit_chords = false);
+  CornerBlender(PathSource& source, double corner_angle_rad, ChordFitting fitting, const CornerSpeedModel& model);
   std::optional<PathSegment> next() override;
 
  private:
-  std::unique_ptr<ChordFitter> fitter_;  // null without fit_chords
+  //! The fillet choose_corner picks for the corner between held_ and `b` (nullopt: none), and the
+  //! speed bound it leaves at b's start.
+  std::optional<CornerFillet> chosen_fillet(const CornerFillet& full, const PathSegment& b, const Vec2& in,
+                                            const Vec2& out, double tolerance_m, double max_trim_m);
+  //! The bound on the speed at held_'s start: the corner before, and the arc that ends there (its
+  //! cap, and the curvature step into held_, v²/r ≤ j·τ).
+  [[nodiscard]] double speed_bound_at_held_start() const noexcept;
+
+  std::unique_ptr<ChordFitter> fitter_;  // null without fitting
   PathSource& source_;                   // the fitter, or the stage before
   double corner_angle_rad_;
   double corner_chord_;                // 2·sin(corner_angle_rad/2): |out − in| of a turn by that angle
   std::optional<PathSegment> held_;    // the last segment, whose end may still be trimmed
   double held_length_m_ = 0.0;         // its programmed length
   bool held_blended_ = false;          // its start was moved by the corner before
+  std::optional<CornerSpeedModel> model_;
+  double held_start_speed_m_s_ = 0.0;  // a bound on the speed at held_'s start (+inf: unknown)
+  double next_start_speed_m_s_ = 0.0;  // the same for the segment after the corner being decided
+  // The arc that ends at held_'s start (radius 0: none): it bounds that speed too, worked out only
+  // when a corner is decided (speed_bound_at_held_start).
+  double held_start_arc_radius_m_ = 0.0, next_start_arc_radius_m_ = 0.0;
+  double held_start_arc_feed_m_s_ = 0.0, next_start_arc_feed_m_s_ = 0.0;
   std::deque<PathSegment> ready_;
   bool exhausted_ = false;
 };

@@ -22,6 +22,11 @@ enum class GcodeWarningKind : std::uint8_t {
   long_dwell,           //!< a dwell over long_dwell_warning_s
   fan_as_laser,         //!< M106/M107 (Marlin fan output) read as laser on/off
   output_as_laser,      //!< M62/M63 (synchronised digital output) read as laser on/off
+  output_ignored,       //!< M62/M63 or M106/M107 on an output configured as not the laser (GcodeOptions::outputs)
+  tool_length_ignored,  //!< G43, G43.1, G43.2 and H words: tool length offsets only concern Z
+  plane_arc_as_line,    //!< a G2/G3 arc in the XZ (G18) or YZ (G19) plane: its XY projection, a straight line
+  m_code_ignored,       //!< a vendor M-code of GcodeOptions::ignored_m_codes (M100, M17, M18, …)
+  start_at_home,        //!< G92 before the first move without a start position: the robot starts at its home
 };
 
 //! A short stable name of a kind ("z_ignored", …), the JSON key of a warning.

@@ -21,13 +21,23 @@ inline constexpr double max_feed_mm_min = 1e6;
 inline constexpr double max_block_duration_s = 3600.0;
 //! Dwells longer than this (s) are accepted with a warning (G4 P500 is 500 s, or 0.5 s in ms).
 inline constexpr double long_dwell_warning_s = 60.0;
+//! Default blend tolerance (m): of a G64 without P and of a program that names no mode (20 µm; see
+//! GcodeOptions::default_blend_tolerance_m).
+inline constexpr double default_blend_tolerance_m = 20e-6;
 //! Largest G64 P blend tolerance (m); a corner is never rounded by more than half its shorter line.
 inline constexpr double max_blend_tolerance_m = 1.0;
 //! Default full-scale S: 1000, GRBL's default $30 (LightBurn's GRBL profile). Marlin uses 255.
 inline constexpr double default_s_max = 1000.0;
 //! M106 (Marlin's fan output driving a laser) takes S in 0–255.
 inline constexpr double fan_s_max = 255.0;
-//! Refusals listed one by one before the rest are only counted ("… and N more").
+//! Refusals listed one by one before the rest are only counted ("… and N more"); no more are kept,
+//! not even of one line (a 16 MB line of `G1G1…` held a refusal per word).
 inline constexpr std::size_t max_reported_errors = 20;
+//! Longest line read (bytes, without its line end): 64 KiB, 250 times LinuxCNC's and GRBL's 256. A
+//! longer line (or a file without line ends, such as /dev/zero) is refused at its column 65 537
+//! after reading at most that much, and reading stops there.
+inline constexpr std::size_t max_line_bytes = 65536;
+//! Highest M-code in GcodeOptions::ignored_m_codes and output number P of GcodeOptions::outputs.
+inline constexpr double max_code_number = 1000.0;
 
 }  // namespace stiffpath::motion

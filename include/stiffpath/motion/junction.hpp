@@ -1,6 +1,8 @@
 // How fast the path may pass the junction between two segments (corners, tangent joins, curvature steps).
 #pragma once
 
+#include <cstdint>
+
 #include "stiffpath/motion/limits.hpp"
 #include "stiffpath/motion/path_segment.hpp"
 #include "stiffpath/motion/segment_limits.hpp"
@@ -24,17 +26,40 @@ struct JunctionRules {
   //! lengthens coarse ones (the gear outline's contour by 6.9 %) and 0.1 mm-chord circles by 0.1-3.1 %
   //! (docs/motion.md, "Fitted chords").
   bool fit_chords = false;
+  //! G64: true (the default, `--chords auto`), chains of lines merged by LineMerger (staircases, which
+  //! become uneven chords of a smooth curve) are fitted even when fit_chords is false: their blends
+  //! would step in curvature at every chord (measured in docs/motion.md).
+  bool fit_merged_chords = true;
 };
+
+//! What bounds the path's speed at a junction or on a segment: the account of a plan's lost time
+//! (SlowdownReport) names these.
+enum class SpeedLimit : std::uint8_t {
+  none,            //!< nothing but the feed and the machine's speed limit
+  rest,            //!< the program's start and end, at rest
+  dwell,           //!< a dwell (G4, G4 P0), a program stop (M0/M1): the path stops there
+  exact_stop,      //!< a corner in exact-stop mode (G61)
+  corner,          //!< a sharp corner not rounded (G0 to G1, a laser switch, or where no fillet pays): 2·v·sin(φ/2) ≤ j·τ²
+  curvature_step,  //!< a step of curvature (a line into an arc, between a blend's arcs): v²·Δκ ≤ j·τ
+  arc_speed,       //!< an arc's speed cap: its centripetal share of the acceleration and jerk limits
+  feed,            //!< a lower programmed feed next to it
+};
+
+//! A short stable name ("curvature_step", …): the JSON key.
+const char* to_string(SpeedLimit limit) noexcept;
+//! A phrase for the summaries ("curvature steps (v^2*dk <= j*tau)", …).
+const char* describe(SpeedLimit limit) noexcept;
 
 //! The turn angle φ ∈ [0, π] between two unit tangents.
 double turn_angle_rad(const Vec2& from, const Vec2& to) noexcept;
 
 //! The highest speed at the junction from `before` into `after`: 0 next to a dwell and at corners
 //! in exact-stop mode (G61, the mode of `before`); otherwise the lower of both segments' caps and
-//! the two step bounds above.
+//! the two step bounds above. `cause`, when given, receives the rule that gives the bound (a cap:
+//! arc_speed when it is an arc's below its feed, else feed).
 double junction_speed_limit(const PathSegment& before, const SegmentLimits& before_limits, const PathSegment& after,
                             const SegmentLimits& after_limits, const MotionLimits& limits,
-                            const JunctionRules& rules) noexcept;
+                            const JunctionRules& rules, SpeedLimit* cause = nullptr) noexcept;
 
 //! The highest speed at which a tangent junction (turn ≤ corner_angle_rad) may be passed with a
 //! tangential acceleration of up to `tangential_acceleration_m_s2` across it, i.e. inside a run of

@@ -41,10 +41,14 @@ struct PathSegment {
   //! the laser is off. With dynamic_power it is the power at the programmed feed.
   double power = 0.0;
   double blend_tolerance_m = 0.0;  //!< G64 P (m): how far a blended corner may leave the corner point
+  //! G64 Q (m), at most P/2: how far a chain of short lines merged into one (LineMerger) may pass from
+  //! their vertices; the blend of the merged line then keeps within P minus this. 0: never merged.
+  double merge_tolerance_m = 0.0;
   int line = 0;                  //!< 1-based source line of the G-code block
   bool rapid = false;            //!< G0
   bool laser_on = false;         //!< laser firing: M3/M4 (M106, M62) active, power > 0 and not a G0 move
   bool dynamic_power = false;    //!< M4 (GRBL's laser mode): power scaled by speed / feed_m_s, see power_at
+  bool merged = false;           //!< a line LineMerger made of several (a staircase's, fine chords')
   JunctionMode mode = JunctionMode::exact_stop;  //!< how the junction at the end of this segment is passed
 };
 
@@ -62,7 +66,7 @@ PathSegment make_line(const Vec2& start_m, const Vec2& end_m);
 PathSegment make_arc(const Vec2& start_m, const Vec2& end_m, const Vec2& center_m, double sweep_rad);
 
 //! `piece` (a line or arc that replaces part of `source`) with source's feed, laser state and power,
-//! blend tolerance, source line, rapid flag and junction mode.
+//! blend and merge tolerances, source line, rapid flag and junction mode.
 PathSegment carrying_attributes(PathSegment piece, const PathSegment& source) noexcept;
 //! A dwell of duration_s at point_m.
 PathSegment make_dwell(const Vec2& point_m, double duration_s);

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <optional>
 
+#include "stiffpath/motion/junction.hpp"
 #include "stiffpath/motion/path_segment.hpp"
 #include "stiffpath/motion/profile.hpp"
 #include "stiffpath/motion/segment_limits.hpp"
@@ -26,6 +27,11 @@ struct PlannedSegment {
   double entry_speed_m_s = 0.0;   //!< path speed at the start (m/s)
   double exit_speed_m_s = 0.0;    //!< path speed at the end (m/s)
   std::size_t index = 0;        //!< 0-based position in the planned program
+  //! The rule that bounds the speed where its profile starts / ends, when the profile's speed there
+  //! is that rule's bound (a valley of the speed); none when the speed there is set by braking or
+  //! accelerating from elsewhere. SlowdownReport charges lost time to these.
+  SpeedLimit entry_limit = SpeedLimit::none;
+  SpeedLimit exit_limit = SpeedLimit::none;
 
   [[nodiscard]] double end_time_s() const noexcept { return start_time_s + duration_s; }
 };

@@ -82,6 +82,7 @@ class Planner final : public SegmentSource {
     double dwell_s = 0.0;
     int line = 0;              // source line of its first segment
     double entry_limit_m_s = 0.0;      // junction rules at the start
+    SpeedLimit entry_cause = SpeedLimit::rest;  // which rule gives entry_limit_m_s
     double entry_max_m_s = 0.0;        // after the backward pass over the window
     double reach_from_rest_m_s = 0.0;  // reachable_speed(length, 0): the exit-independent part of the entry bound
   };
@@ -93,6 +94,8 @@ class Planner final : public SegmentSource {
     double speed_m_s = 0.0;       // and its speed there
     double cruise_start_s = 0.0;  // the cruise phase: where it starts in time and arc length
     double cruise_start_m = 0.0;
+    SpeedLimit entry_limit = SpeedLimit::none;  // the rules binding its ends' speeds (PlannedSegment)
+    SpeedLimit exit_limit = SpeedLimit::none;
   };
   void add(const PathSegment& segment);
   void close_run();
@@ -116,7 +119,9 @@ class Planner final : public SegmentSource {
   std::deque<Node> window_;
   std::optional<Run> open_;       // the run still being extended (not yet in the window)
   double open_entry_limit_m_s_ = 0.0;
+  SpeedLimit open_entry_cause_ = SpeedLimit::rest;
   double last_cap_m_s_ = 0.0;     // speed cap of the last closed run
+  SpeedLimit last_cap_cause_ = SpeedLimit::feed;  // arc_speed when that cap is an arc's
   PathSegment previous_;          // the last segment added, and its limits
   SegmentLimits previous_limits_;
   std::optional<Release> release_;

@@ -38,6 +38,7 @@ struct Run {
   std::size_t segments = 0;
   bool dwell = false;   //!< a dwell, which is always a run of its own
   double closing_length_m = 0.0;  //!< RunRules::closing_length_factor × the change from rest to low's cap
+  double lowest_feed_m_s = 0.0;   //!< the lowest programmed feed of its segments (whether a cap is an arc's)
 };
 
 //! The lower, and the higher, of each limit of two sets.

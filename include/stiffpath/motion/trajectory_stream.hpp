@@ -11,8 +11,10 @@
 
 #include "stiffpath/motion/corner_blend.hpp"
 #include "stiffpath/motion/gcode_reader.hpp"
+#include "stiffpath/motion/line_merge.hpp"
 #include "stiffpath/motion/planner.hpp"
 #include "stiffpath/motion/sampler.hpp"
+#include "stiffpath/motion/slowdown.hpp"
 #include "stiffpath/motion/trajectory.hpp"
 
 namespace stiffpath::motion {
@@ -24,6 +26,10 @@ struct PlanOptions {
   PlannerOptions planner;                   //!< junction rules, look-ahead bound
   double rate_hz = default_sample_rate_hz;  //!< sampling rate (Hz)
 };
+
+//! The corner blender of a plan (with the chord fitter when asked for), deciding each G64 corner
+//! with the planner's limits (CornerSpeedModel), reading from `source` (a LineMerger).
+std::unique_ptr<CornerBlender> make_blender(PathSource& source, const PlanOptions& options);
 
 //! G-code in, samples out, one at a time: the file is read line by line and segments are released
 //! by the look-ahead as soon as their timing is final, so memory stays flat however long the job
@@ -44,11 +50,17 @@ class TrajectoryStream final : public SampleSource {
   [[nodiscard]] double rate_hz() const noexcept { return sampler_->rate_hz(); }
   //! The reader's warnings, one per kind (complete once next() has returned nullopt).
   [[nodiscard]] const std::vector<GcodeWarning>& warnings() const noexcept { return reader_->warnings(); }
+  //! Where the plan loses time against the programmed feeds, and why (complete once next() has
+  //! returned nullopt).
+  [[nodiscard]] const SlowdownReport& slowdowns() const noexcept { return tap_->report(); }
 
  private:
   std::unique_ptr<GcodeReader> reader_;
+  std::unique_ptr<FeedClock> clock_;
+  std::unique_ptr<LineMerger> merger_;
   std::unique_ptr<CornerBlender> blender_;
   std::unique_ptr<Planner> planner_;
+  std::unique_ptr<SlowdownTap> tap_;
   std::unique_ptr<Sampler> sampler_;
 };
 
