@@ -5,6 +5,8 @@
 #include <cmath>
 #include <vector>
 
+#include "stiffpath/core/median.hpp"
+
 namespace stiffpath::vision::detail {
 
 WindowSums window_sums(const SectionFrame& frame, int a, double lo, double hi, const Paper& paper) {
@@ -34,10 +36,8 @@ std::optional<double> flank_median(const SectionFrame& frame, int a, int lo, int
   int n = 0;
   for (int b = std::max(lo, 0); b < std::min(hi, frame.size_b()) && n < 64; ++b) values[n++] = frame.at(a, b);
   if (n == 0) return std::nullopt;
-  std::nth_element(values, values + n / 2, values + n);
-  if (n % 2 == 1) return values[n / 2];
-  const float upper = values[n / 2];
-  return 0.5 * (upper + *std::max_element(values, values + n / 2));
+  // A few pixels (cut short at the image's edge to an even count): the mean of the two middle ones.
+  return core::median_in_place(std::span<float>(values, static_cast<std::size_t>(n)), core::MedianRule::mean_of_middles);
 }
 
 std::vector<std::optional<double>> running_mean(const std::vector<std::optional<double>>& v, int half_window) {

@@ -5,6 +5,7 @@
 
 #include "scan_internal.hpp"
 #include "stiffpath/core/error.hpp"
+#include "stiffpath/core/median.hpp"
 
 namespace stiffpath::vision {
 
@@ -82,8 +83,7 @@ ScanResult measure_mark(const cv::Mat& grey, const CoarseGrid& grid, const MarkC
     points.push_back(s.centres);
     result.sides.push_back(std::move(s));
   }
-  std::nth_element(widths.begin(), widths.begin() + static_cast<std::ptrdiff_t>(widths.size() / 2), widths.end());
-  result.width_m = widths[widths.size() / 2];
+  result.width_m = core::median_in_place(std::span<double>(widths), core::MedianRule::upper_middle);  // as each side's width
   result.metrics = evaluation::measure_sides(points, path.closed, options.metrics);
   for (auto& corner : result.metrics.corners) corner.path_distance_m.reset();  // corner zones are not traced on scans
   if (result.specks_ignored > 0) result.warnings.push_back(fmt::format("ignored {} dust speck(s)", result.specks_ignored));

@@ -4,17 +4,14 @@
 
 #include "cross_section.hpp"
 #include "end_tip.hpp"
+#include "stiffpath/core/median.hpp"
 
 namespace stiffpath::vision::detail {
 
 namespace {
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
-}
+// Robust estimates of many sections: the upper middle (one of the values, one partial sort) is enough.
+double median(std::vector<double> v) { return core::median(std::move(v), core::MedianRule::upper_middle); }
 
 // The pixel box holding this side's coarse cells at or beyond `seed` along `outward`, widened by `margin`.
 cv::Rect end_region(const SideSections& side, const Point2& seed, const Point2& outward, double margin) {

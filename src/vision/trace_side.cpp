@@ -7,6 +7,7 @@
 #include "cross_section.hpp"
 #include "scan_internal.hpp"
 #include "stiffpath/core/error.hpp"
+#include "stiffpath/core/median.hpp"
 
 namespace stiffpath::vision::detail {
 
@@ -14,12 +15,8 @@ namespace {
 
 using evaluation::Line2;
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
-}
+// Robust estimates of many sections: the upper middle (one of the values, one partial sort) is enough.
+double median(std::vector<double> v) { return core::median(std::move(v), core::MedianRule::upper_middle); }
 
 double b_on(const SectionFrame& fr, const Line2& l, double a) {
   return fr.b_of(l.at((a - fr.a_of(l.origin)) / fr.a_of(l.direction)));
