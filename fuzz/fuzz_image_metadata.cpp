@@ -2,7 +2,7 @@
 #include <cmath>
 #include <span>
 
-#include "stiffpath/vision/resolution.hpp"
+#include "stiffpath/vision/io/resolution.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const auto r = stiffpath::vision::resolution_from_memory(std::span<const std::uint8_t>(data, size));

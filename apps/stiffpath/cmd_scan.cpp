@@ -8,9 +8,9 @@
 #include "progress.hpp"
 #include "stiffpath/core/csv.hpp"
 #include "stiffpath/core/error.hpp"
-#include "stiffpath/vision/image_io.hpp"
-#include "stiffpath/vision/overlay.hpp"
-#include "stiffpath/vision/scan.hpp"
+#include "stiffpath/vision/io/image_io.hpp"
+#include "stiffpath/vision/scan/overlay.hpp"
+#include "stiffpath/vision/scan/scan.hpp"
 
 namespace stiffpath::cli {
 

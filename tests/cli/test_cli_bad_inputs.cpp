@@ -13,7 +13,7 @@
 
 #include "cli_runner.hpp"
 #include "gcode_corpus.hpp"
-#include "stiffpath/vision/resolution.hpp"
+#include "stiffpath/vision/io/resolution.hpp"
 
 namespace fs = std::filesystem;
 using namespace stiffpath::test;

@@ -6,8 +6,8 @@
 
 #include "cli_runner.hpp"
 #include "stiffpath/core/error.hpp"
-#include "stiffpath/vision/image_io.hpp"
-#include "stiffpath/vision/resolution.hpp"
+#include "stiffpath/vision/io/image_io.hpp"
+#include "stiffpath/vision/io/resolution.hpp"
 
 namespace stiffpath::vision {
 namespace {

@@ -7,8 +7,8 @@
 #include <opencv2/imgproc.hpp>
 #include <string>
 
-#include "stiffpath/vision/render.hpp"
-#include "stiffpath/vision/scan.hpp"
+#include "stiffpath/vision/render/render.hpp"
+#include "stiffpath/vision/scan/scan.hpp"
 
 namespace stiffpath::vision {
 namespace {

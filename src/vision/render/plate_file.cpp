@@ -6,7 +6,7 @@
 #include "stiffpath/core/csv.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/core/json_fields.hpp"
-#include "stiffpath/vision/plate.hpp"
+#include "stiffpath/vision/render/plate.hpp"
 
 namespace stiffpath::vision {
 

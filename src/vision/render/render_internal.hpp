@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "stiffpath/vision/render.hpp"
+#include "stiffpath/vision/render/render.hpp"
 
 namespace stiffpath::vision::detail {
 

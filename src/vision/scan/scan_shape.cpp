@@ -2,7 +2,7 @@
 #include <fmt/format.h>
 
 #include "stiffpath/core/error.hpp"
-#include "stiffpath/vision/scan.hpp"
+#include "stiffpath/vision/scan/scan.hpp"
 
 namespace stiffpath::vision {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "stiffpath/evaluation/line_fit.hpp"
-#include "stiffpath/vision/scan.hpp"
+#include "stiffpath/vision/scan/scan.hpp"
 
 namespace stiffpath::vision::detail {
 

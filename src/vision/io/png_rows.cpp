@@ -6,7 +6,7 @@
 
 #include "stiffpath/core/atomic_file.hpp"
 #include "stiffpath/core/error.hpp"
-#include "stiffpath/vision/image_io.hpp"
+#include "stiffpath/vision/io/image_io.hpp"
 
 namespace stiffpath::vision {
 

@@ -1,5 +1,5 @@
 // Drawing the overlay: legend and scale bar, the scan with centre line, fitted lines, splines, corners and side numbers, deviation strips.
-#include "stiffpath/vision/overlay.hpp"
+#include "stiffpath/vision/scan/overlay.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "stiffpath/vision/scan.hpp"
+#include "stiffpath/vision/scan/scan.hpp"
 
 namespace stiffpath::vision {
 

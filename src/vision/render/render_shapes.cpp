@@ -4,7 +4,7 @@
 #include <numbers>
 
 #include "stiffpath/core/error.hpp"
-#include "stiffpath/vision/render.hpp"
+#include "stiffpath/vision/render/render.hpp"
 
 namespace stiffpath::vision {
 

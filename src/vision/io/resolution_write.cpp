@@ -5,7 +5,7 @@
 #include <fmt/format.h>
 
 #include "stiffpath/core/error.hpp"
-#include "stiffpath/vision/resolution.hpp"
+#include "stiffpath/vision/io/resolution.hpp"
 
 namespace stiffpath::vision {
 

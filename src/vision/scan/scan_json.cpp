@@ -1,7 +1,7 @@
 // The scan result as JSON: the shared path metrics plus the scan's own figures and warnings, units in the keys.
 #include "stiffpath/core/units.hpp"
 #include "stiffpath/evaluation/metrics_json.hpp"
-#include "stiffpath/vision/scan.hpp"
+#include "stiffpath/vision/scan/scan.hpp"
 
 namespace stiffpath::vision {
 

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "stiffpath/vision/render.hpp"
+#include "stiffpath/vision/render/render.hpp"
 
 namespace stiffpath::vision {
 

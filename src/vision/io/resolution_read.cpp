@@ -4,7 +4,7 @@
 #include <fstream>
 #include <functional>
 
-#include "stiffpath/vision/resolution.hpp"
+#include "stiffpath/vision/io/resolution.hpp"
 
 namespace stiffpath::vision {
 

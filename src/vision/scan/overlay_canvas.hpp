@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "overlay_text.hpp"
-#include "stiffpath/vision/overlay.hpp"
+#include "stiffpath/vision/scan/overlay.hpp"
 
 namespace stiffpath::vision::detail {
 

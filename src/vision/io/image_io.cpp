@@ -1,5 +1,5 @@
 // Scan loading (OpenCV decoding + our own resolution parsing) and atomic image writing with the resolution stored.
-#include "stiffpath/vision/image_io.hpp"
+#include "stiffpath/vision/io/image_io.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -13,7 +13,7 @@
 
 #include "stiffpath/core/atomic_file.hpp"
 #include "stiffpath/core/error.hpp"
-#include "stiffpath/vision/resolution.hpp"
+#include "stiffpath/vision/io/resolution.hpp"
 
 namespace stiffpath::vision {
 
