@@ -9,6 +9,9 @@
 
 namespace stiffpath::core {
 
+//! σ of a normal distribution per median absolute deviation (1/Φ⁻¹(3/4)): a robust σ is kMadToSigma · MAD.
+inline constexpr double kMadToSigma = 1.4826;
+
 //! Which value a median of an even number of values is.
 enum class MedianRule {
   //! The mean of the two middle values: the textbook median, for statistics that are reported.

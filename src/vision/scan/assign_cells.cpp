@@ -15,9 +15,9 @@ double segment_distance(const FoundSide& s, const Point2& p) {
 
 }  // namespace
 
-std::vector<int> assign_cells(const MarkComponent& mark, std::vector<FoundSide>& sides) {
+std::vector<int> assign_cells(const MarkComponent& mark, std::vector<FoundSide>& sides, int iterations, double settle_px) {
   std::vector<int> owner(mark.cells_px.size(), 0);
-  for (int it = 0; it < 30; ++it) {
+  for (int it = 0; it < iterations; ++it) {
     for (std::size_t i = 0; i < mark.cells_px.size(); ++i) {
       double best = 1e300;
       for (std::size_t k = 0; k < sides.size(); ++k) {
@@ -36,7 +36,7 @@ std::vector<int> assign_cells(const MarkComponent& mark, std::vector<FoundSide>&
       moved = std::max({moved, sides[k].t0 - t0, t1 - sides[k].t1});
       sides[k].t0 = t0, sides[k].t1 = t1;
     }
-    if (moved < 0.5) break;
+    if (moved < settle_px) break;
   }
   return owner;
 }

@@ -59,7 +59,8 @@ std::vector<std::optional<double>> running_mean(const std::vector<std::optional<
 
 double local_slope(const SideSections& side, int a) {
   double n = 0, sa = 0, sb = 0, saa = 0, sab = 0;
-  for (int j = std::max(side.body_first, a - 8); j <= std::min(side.body_last, a + 8); ++j) {
+  const int half = side.tuning->slope_half_window_sections;
+  for (int j = std::max(side.body_first, a - half); j <= std::min(side.body_last, a + half); ++j) {
     const Section& s = side.at(j);
     if (!s.body || s.rejected) continue;
     const double x = j - a;

@@ -65,27 +65,29 @@ struct Section {
   bool crowded = false;  //!< another side of the mark is within the section's reach (near a corner): not measured
 };
 
-//! The cross-sections of one side after the body pass, and what they tell about the mark.
+//! The cross-sections of one side, and what they tell about the mark.
 struct SideSections {
   SectionFrame frame;
   const CoarseGrid* grid = nullptr;
-  const CoarsePath* path = nullptr;  //!< the mark's sides and the cells each owns
-  int side = 0;                      //!< this side's index in path
-  std::vector<Section> secs;  //!< consecutive a from `first` to `last`
+  const CoarsePath* path = nullptr;      //!< the mark's sides and the cells each owns
+  const ScanTuning* tuning = nullptr;
+  int side = 0;                          //!< this side's index in path
+  std::vector<Section> sections;         //!< consecutive a from `first` to `last`
   int first = 0, body_first = 0, body_last = 0, last = 0;
-  double cos_t = 1, tan_t = 0;  //!< angle between the side and the section's along axis
-  double h_wide = 0;            //!< half window of the darkness integrals (px)
-  double blur_px = 0;           //!< σ of the edge blur, perpendicular to the side (px)
-  double darkness = 0;          //!< full darkness of the mark (its core's, corrected for blur)
-  double core_factor = 1;       //!< core darkness / full darkness (< 1 when blur reaches the core)
-  std::size_t end_fit = 20;     //!< sections used for a free end's local line, width and darkness
-  std::size_t crowded_elsewhere = 0;  //!< body sections left out away from corners: another side of the mark was within reach
-  [[nodiscard]] Section& at(int a) { return secs[static_cast<std::size_t>(a - first)]; }
-  [[nodiscard]] const Section& at(int a) const { return secs[static_cast<std::size_t>(a - first)]; }
+  bool low_free = false, high_free = false;  //!< the low-a / high-a end of the side is a free end (not a corner)
+  double cos_t = 1, tan_t = 0;           //!< angle between the side and the section's along axis
+  double window_half_px = 0;             //!< half window of the darkness integrals (px)
+  double blur_px = 0;                    //!< σ of the edge blur, perpendicular to the side (px)
+  double darkness = 0;                   //!< full darkness of the mark (its core's, corrected for blur)
+  double core_factor = 1;                //!< core darkness / full darkness (< 1 when blur reaches the core)
+  std::size_t end_fit_sections = 20;     //!< sections used for a free end's local line, width and darkness
+  std::size_t crowded_elsewhere = 0;     //!< body sections left out away from corners: another side of the mark was within reach
+  [[nodiscard]] Section& at(int a) { return sections[static_cast<std::size_t>(a - first)]; }
+  [[nodiscard]] const Section& at(int a) const { return sections[static_cast<std::size_t>(a - first)]; }
 };
 
 //! Slope db/da of the centre line at section a: a least-squares line through the accepted body
-//! centres within ±8 sections (0 when fewer than three).
+//! centres within ±ScanTuning::slope_half_window_sections (0 when fewer than three).
 double local_slope(const SideSections& side, int a);
 
 //! Flags the body sections whose window or flanks (`reach_px` either side of the centre) hold a pixel
@@ -113,6 +115,6 @@ struct FreeEnd {
   bool continues = false;     //!< the mark goes on past the search region: this is not a free end
 };
 //! `side_line` is the side's fitted line; the end is measured along its direction.
-FreeEnd measure_free_end(const SideSections& side, const evaluation::Line2& side_line, bool low, const ScanOptions& options);
+FreeEnd measure_free_end(const SideSections& side, const evaluation::Line2& side_line, bool low);
 
 }  // namespace stiffpath::vision::detail

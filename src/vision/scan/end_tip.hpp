@@ -31,7 +31,7 @@ struct TipGuess {
   double radius = 0;     //!< the spot's radius w/2
   double darkness = 0;   //!< full darkness k of the mark
   double sigma = 0;      //!< edge spread: blur and pixel area, √(σ_blur² + 1/12)
-  double half_angle_rad = 50 * 3.14159265358979 / 180;  //!< the fitted part of the edge, about `outward`
+  double half_angle_rad = 0;  //!< the fitted part of the edge, about `outward` (ScanTuning::tip_half_angle_deg)
 };
 
 //! A blurred disk fitted to the outermost edge of the mark's footprint (see blurred_disk.hpp).

@@ -37,7 +37,7 @@ Features find_features(const CoarseGrid& grid) {
   return out;
 }
 
-MarkComponent mark_of(const CoarseGrid& grid, const Features& features, const Feature& f) {
+MarkComponent mark_of(const CoarseGrid& grid, const Features& features, const Feature& f, const ScanTuning& tuning) {
   MarkComponent mark;
   mark.label = f.label;
   mark.box = f.box;
@@ -53,7 +53,7 @@ MarkComponent mark_of(const CoarseGrid& grid, const Features& features, const Fe
     }
   }
   std::sort(dark.begin(), dark.end());
-  mark.full_darkness = dark[static_cast<std::size_t>(0.9 * static_cast<double>(dark.size() - 1))];
+  mark.full_darkness = dark[static_cast<std::size_t>(tuning.full_darkness_quantile * static_cast<double>(dark.size() - 1))];
   double area = 0.0;
   for (const double d : dark) area += std::min(1.0, d / mark.full_darkness);
   area *= grid.cell * grid.cell;
@@ -85,7 +85,7 @@ MarkComponent find_mark(const CoarseGrid& grid, double px_per_m, const ScanOptio
   for (std::size_t i = 1; i < order.size(); ++i) {
     const Feature& f = *order[i];
     const Point2 at{(f.box.x + f.box.width / 2.0) * grid.cell, (f.box.y + f.box.height / 2.0) * grid.cell};
-    if (f.extent_px >= 0.2 * main.extent_px && f.extent_px >= min_px) {
+    if (f.extent_px >= options.tuning.second_mark_ratio * main.extent_px && f.extent_px >= min_px) {
       throw Error(where, fmt::format("found two separate marks ({:.2f} mm and {:.2f} mm across, the second near {}): the scan "
                                      "must show one marked path, or the mark is interrupted; pass --roi to pick one, or "
                                      "--all-marks to measure each", to_mm(main.extent_px), to_mm(f.extent_px),
@@ -103,7 +103,7 @@ MarkComponent find_mark(const CoarseGrid& grid, double px_per_m, const ScanOptio
                                    main.border, options.roi_px.empty() ? "image" : "region (--roi)",
                                    options.roi_px.empty() ? "scan it with paper around it" : "widen the region"));
   }
-  MarkComponent mark = mark_of(grid, features, main);
+  MarkComponent mark = mark_of(grid, features, main, options.tuning);
   mark.specks = specks;
   mark.warnings = std::move(warnings);
   return mark;

@@ -48,11 +48,19 @@ CoarsePath find_sides(const MarkComponent& mark, int n, double px_per_m, const S
   if (n < 1) throw Error(where, fmt::format("number of sides must be >= 1, got {}", n));
   const Closure closure = options.metrics.closure;
   if (closure == Closure::closed && n < 3) throw Error(where, fmt::format("a closed mark needs at least 3 sides, got {}", n));
-  const double w = mark.width_px, cell_px = options.cell_px;
+  const ScanTuning& t = options.tuning;
+  const double w = mark.width_px, cell_px = t.cell_px;
   SideSearch search;
-  search.band = w / 2 + 1.5 * cell_px;
-  search.max_gap = std::max(1e-3 * px_per_m, 3 * w);
+  search.band = w / 2 + t.side_band_cells * cell_px;
+  search.max_gap = std::max(t.side_gap_m * px_per_m, t.side_gap_widths * w);
   search.min_length = options.min_mark_length_m * px_per_m;
+  search.trials = t.ransac_trials;
+  search.seed = t.ransac_seed;
+  search.unassigned_fraction = t.unassigned_fraction;
+  // How far a side may stray from its line: the straightness allowed, plus the mark's width.
+  const auto allowed_offset = [&](const FoundSide& side) {
+    return std::max(t.straightness_m * px_per_m, t.straightness_fraction * (side.t1 - side.t0)) + w;
+  };
   std::vector<FoundSide> found;
   std::vector<int> owner(mark.cells_px.size(), 0);
   if (n == 1) {
@@ -61,7 +69,7 @@ CoarsePath find_sides(const MarkComponent& mark, int n, double px_per_m, const S
     found.push_back(fit_cells(mark, all));
     double worst = 0;
     for (const auto& p : mark.cells_px) worst = std::max(worst, std::abs(found[0].line.offset(p)));
-    const double allowed = std::max(1e-3 * px_per_m, 0.03 * (found[0].t1 - found[0].t0)) + w;
+    const double allowed = allowed_offset(found[0]);
     if (worst > allowed) {
       throw Error(where, fmt::format("the mark is not a straight line: it strays {:.2f} mm from its fitted line; "
                                      "use --shape triangle or polyline:N", worst / px_per_m * 1e3));
@@ -69,7 +77,7 @@ CoarsePath find_sides(const MarkComponent& mark, int n, double px_per_m, const S
   } else {
     // Sides that bow (a robot deflected along its path) leave much of their mass outside a band of the
     // mark's width: widen the band step by step, up to the straightness allowed for a side.
-    const double widest = std::max(1e-3 * px_per_m, 3 * w);
+    const double widest = std::max(t.widest_band_m * px_per_m, t.widest_band_widths * w);
     for (;;) {
       try {
         found = ransac_sides(mark, n, search, where);
@@ -79,13 +87,13 @@ CoarsePath find_sides(const MarkComponent& mark, int n, double px_per_m, const S
         search.band = std::min(2 * search.band, widest);
       }
     }
-    owner = assign_cells(mark, found);
+    owner = assign_cells(mark, found, t.assign_iterations, t.assign_settle_px);
     for (std::size_t k = 0; k < found.size(); ++k) {
       double worst = 0;
       for (std::size_t i = 0; i < owner.size(); ++i) {
         if (owner[i] == static_cast<int>(k)) worst = std::max(worst, std::abs(found[k].line.offset(mark.cells_px[i])));
       }
-      const double allowed = std::max(1e-3 * px_per_m, 0.03 * (found[k].t1 - found[k].t0)) + w;
+      const double allowed = allowed_offset(found[k]);
       if (worst > allowed) {
         throw Error(where, fmt::format("the mark does not split into {} straight sides: one strays {:.2f} mm from its fitted line "
                                        "(allowed {:.2f} mm)", n, worst / px_per_m * 1e3, allowed / px_per_m * 1e3));
@@ -94,13 +102,13 @@ CoarsePath find_sides(const MarkComponent& mark, int n, double px_per_m, const S
   }
 
   // Link side ends that meet at the intersection of their lines.
-  const double tol = std::max(2e-3 * px_per_m, 4 * w);
+  const double tol = std::max(t.corner_reach_m * px_per_m, t.corner_reach_widths * w);
   std::vector<Link> links;
   auto end_of = [&](int i, int e) { return found[i].line.at(e == 0 ? found[i].t0 : found[i].t1); };
   for (int i = 0; i < n; ++i) {
     for (int j = i + 1; j < n; ++j) {
-      if (evaluation::angle_between(found[i].line.direction, found[j].line.direction) < 0.17 ||
-          evaluation::angle_between(found[i].line.direction, -found[j].line.direction) < 0.17) continue;
+      if (evaluation::angle_between(found[i].line.direction, found[j].line.direction) < t.parallel_rad ||
+          evaluation::angle_between(found[i].line.direction, -found[j].line.direction) < t.parallel_rad) continue;
       const auto x = evaluation::intersect(found[i].line, found[j].line);
       for (int e = 0; e < 2 && x; ++e) {
         for (int f = 0; f < 2; ++f) {

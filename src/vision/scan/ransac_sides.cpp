@@ -51,14 +51,14 @@ std::vector<FoundSide> ransac_sides(const MarkComponent& m, int n, const SideSea
   for (std::size_t i = 0; i < remaining.size(); ++i) remaining[i] = i;
   double total = 0;
   for (const double w : m.weights) total += w;
-  std::mt19937_64 rng(7);
+  std::mt19937_64 rng(s.seed);
   std::vector<FoundSide> found;
   for (int k = 0; k < n; ++k) {
     if (remaining.size() < 2) break;
     std::uniform_int_distribution<std::size_t> pick(0, remaining.size() - 1);
     Line2 best;
     double best_score = -1;
-    for (int it = 0; it < 600; ++it) {
+    for (int it = 0; it < s.trials; ++it) {
       const Point2 a = m.cells_px[remaining[pick(rng)]], b = m.cells_px[remaining[pick(rng)]];
       if ((b - a).norm() < 4 * s.band) continue;
       const Line2 line{a, (b - a).normalized()};
@@ -97,7 +97,7 @@ std::vector<FoundSide> ransac_sides(const MarkComponent& m, int n, const SideSea
   }
   double left_mass = 0;
   for (const auto i : remaining) left_mass += m.weights[i];
-  if (left_mass > 0.15 * total) {
+  if (left_mass > s.unassigned_fraction * total) {
     throw Error(where, fmt::format("the mark has more than {} straight sides: {:.0f} % of it lies on none of them", n,
                                    100 * left_mass / total));
   }

@@ -24,8 +24,11 @@ void check_scan_input(const cv::Mat& grey, double dpi, const ScanOptions& option
   }
   if (!(dpi > 0.0) || !std::isfinite(dpi)) throw Error(where, fmt::format("resolution must be positive, got {} dpi", dpi));
   if (options.sides < 0 || options.sides > 64) throw Error(where, fmt::format("number of sides must be 0 (any) or 1..64, got {}", options.sides));
-  if (options.cell_px < 2 || options.flank_px < 1 || options.baseline_window < 1 || !(options.band_margin_px >= 0)) {
-    throw Error(where, "invalid scan options (cell >= 2 px, flank >= 1 px, baseline window >= 1, band margin >= 0)");
+  const ScanTuning& t = options.tuning;
+  if (t.cell_px < 2 || t.cell_px > 64 || t.paper_block_cells < 1 || t.flank_px < 1 || t.flank_px > 64 || t.paper_window_sections < 1 ||
+      !(t.window_margin_px >= 0) || t.ransac_trials < 1 || t.slope_half_window_sections < 1 || t.outlier_neighbours < 1) {
+    throw Error(where, "invalid scan tuning (cell 2..64 px, paper block >= 1 cell, flank 1..64 px, paper window >= 1 section, "
+                       "window margin >= 0 px, RANSAC trials >= 1, slope and outlier windows >= 1 section)");
   }
   const cv::Rect& roi = options.roi_px;
   if (!roi.empty() && (roi & cv::Rect(0, 0, grey.cols, grey.rows)) != roi) {
@@ -33,7 +36,7 @@ void check_scan_input(const cv::Mat& grey, double dpi, const ScanOptions& option
                                    roi.x + roi.width, roi.y, roi.y + roi.height, grey.cols, grey.rows));
   }
   const cv::Size size = roi.empty() ? grey.size() : roi.size();
-  if (size.height < 4 * options.cell_px || size.width < 4 * options.cell_px) {
+  if (size.height < 4 * t.cell_px || size.width < 4 * t.cell_px) {
     throw Error(where, fmt::format("the {} is too small to hold a mark ({} × {} px)", roi.empty() ? "image" : "region",
                                    size.width, size.height));
   }
@@ -100,7 +103,7 @@ ScanResult analyse_scan(const cv::Mat& grey, double dpi, const ScanOptions& opti
   detail::check_scan_input(grey, dpi, options);
   const double px_per_m = dpi / 0.0254;
   const cv::Mat view = options.roi_px.empty() ? grey : grey(options.roi_px);
-  const detail::CoarseGrid grid = detail::build_coarse_grid(view, options.cell_px);
+  const detail::CoarseGrid grid = detail::build_coarse_grid(view, options.tuning);
   if (options.progress) options.progress(0.3);
   const detail::MarkComponent mark = detail::find_mark(grid, px_per_m, options);
   ScanResult result = detail::measure_mark(view, grid, mark, px_per_m, options);

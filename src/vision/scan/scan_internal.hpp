@@ -19,9 +19,10 @@ inline float pixel(const cv::Mat& m, int row, int col) {
 
 //! The image averaged over cell × cell blocks, the paper level and the darkness 1 − mean/paper.
 struct CoarseGrid {
-  int cell = 4;
+  int cell = 4;         //!< side of a cell (px)
+  int block_cells = 16;  //!< side of a paper-level block (cells)
   cv::Mat darkness;  //!< CV_32F, ceil(rows/cell) × ceil(cols/cell)
-  //! Paper level: the median grey of each block of 16 × 16 cells (CV_32F), between whose centres it is
+  //! Paper level: the median grey of each block of block_cells² cells (CV_32F), between whose centres it is
   //! interpolated bilinearly (kept at this resolution: a grid of cells would cost a float per 16 px).
   cv::Mat blocks;
   double median = 0, sigma = 0, threshold = 0;  //!< of darkness over all cells
@@ -29,7 +30,7 @@ struct CoarseGrid {
   //! Paper level at a full-resolution pixel centre, bilinear between cell centres.
   [[nodiscard]] double paper_at(double x_px, double y_px) const;
 };
-CoarseGrid build_coarse_grid(const cv::Mat& grey, int cell);
+CoarseGrid build_coarse_grid(const cv::Mat& grey, const ScanTuning& tuning);
 
 //! "x = … mm, y = … mm" of a position (px of the analysed image or region) in the scan's frame.
 std::string position_text(const Point2& px, double px_per_m, const ScanOptions& options);
@@ -54,14 +55,14 @@ struct MarkComponent {
   int label = 0;                 //!< the feature's label
   std::vector<Point2> cells_px;  //!< centres of its cells (px)
   std::vector<double> weights;   //!< their darkness
-  double full_darkness = 0;      //!< darkness of fully covered cells (90th percentile)
+  double full_darkness = 0;      //!< darkness of fully covered cells (ScanTuning::full_darkness_quantile of its cells')
   double width_px = 0;           //!< rough width: area / half the contour length
   int specks = 0;
   std::vector<std::string> warnings;
   cv::Rect box;                  //!< bounding box of its cells (cells)
 };
-MarkComponent mark_of(const CoarseGrid& grid, const Features& features, const Feature& feature);
-//! The one mark of a scan: the heaviest feature; a second one of ≥ 20 % its size, or the mark touching
+MarkComponent mark_of(const CoarseGrid& grid, const Features& features, const Feature& feature, const ScanTuning& tuning);
+//! The one mark of a scan: the heaviest feature; a second one of ≥ second_mark_ratio its size, or the mark touching
 //! the border, is an error; features under min_mark_length_m are specks.
 MarkComponent find_mark(const CoarseGrid& grid, double px_per_m, const ScanOptions& options);
 

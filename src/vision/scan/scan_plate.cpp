@@ -43,7 +43,7 @@ PlateResult analyse_plate(const cv::Mat& grey, double dpi, const ScanOptions& op
   detail::check_scan_input(grey, dpi, options);
   const double px_per_m = dpi / 0.0254;
   const cv::Mat view = options.roi_px.empty() ? grey : grey(options.roi_px);
-  const detail::CoarseGrid grid = detail::build_coarse_grid(view, options.cell_px);
+  const detail::CoarseGrid grid = detail::build_coarse_grid(view, options.tuning);
   const detail::Features features = detail::find_features(grid);
   // Each mark's own progress is the share of the marks still to do.
   ScanOptions each = options;
@@ -81,7 +81,7 @@ PlateResult analyse_plate(const cv::Mat& grey, double dpi, const ScanOptions& op
                                 options.roi_px.empty() ? "image" : "region");
     } else {
       try {
-        mark.result = detail::measure_mark(view, grid, detail::mark_of(grid, features, f), px_per_m, each);
+        mark.result = detail::measure_mark(view, grid, detail::mark_of(grid, features, f, options.tuning), px_per_m, each);
         mark.result.dpi = dpi;
         mark.result.width_px = grey.cols;
         mark.result.height_px = grey.rows;

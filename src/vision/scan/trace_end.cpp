@@ -1,6 +1,7 @@
 // A free end of the mark: the path's farthest point from the round laser spot fitted at the tip of its footprint.
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "cross_section.hpp"
 #include "end_tip.hpp"
@@ -13,11 +14,12 @@ namespace {
 // Robust estimates of many sections: the upper middle (one of the values, one partial sort) is enough.
 double median(std::vector<double> v) { return core::median(std::move(v), core::MedianRule::upper_middle); }
 
-// The pixel box holding this side's coarse cells at or beyond `seed` along `outward`, widened by `margin`.
+// The pixel box holding this side's coarse cells at or beyond `seed` along `outward` (from a cell and a
+// margin behind it), widened by `margin`.
 cv::Rect end_region(const SideSections& side, const Point2& seed, const Point2& outward, double margin) {
   const CoarsePath& path = *side.path;
   const int cell = side.grid->cell;
-  const double from = seed.dot(outward) - 2.0 - cell;
+  const double from = seed.dot(outward) - side.tuning->tip_box_margin_px - cell;
   double x0 = seed.x(), x1 = seed.x(), y0 = seed.y(), y1 = seed.y();
   for (int gy = path.box.y; gy < path.box.y + path.box.height; ++gy) {
     for (int gx = path.box.x; gx < path.box.x + path.box.width; ++gx) {
@@ -65,15 +67,16 @@ evaluation::Line2 end_line(const SideSections& side, bool low, std::size_t count
 // turns back sharply), so a blurred disk fitted to the outermost part of the edge gives the extent
 // c·u + R, and the path's extreme point is c + (R − w/2)·u. The fit's residual and R tell whether
 // the end looks like a round spot at all (a square cut gives a flat front: R ≫ w/2 and misfit corners).
-FreeEnd measure_free_end(const SideSections& side, const evaluation::Line2& side_line, bool low, const ScanOptions& options) {
+FreeEnd measure_free_end(const SideSections& side, const evaluation::Line2& side_line, bool low) {
   const SectionFrame& fr = side.frame;
+  const ScanTuning& tuning = *side.tuning;
   // Width and darkness of the mark's last stretch before the end (both from the same darkness scale).
   // A section cuts the band at the band's own local angle, which near a wiggling end is not the side's:
   // its darkness integral is k·w/cos θ with tan θ the local slope of the centre line.
   std::vector<double> ml, kl;
   int seed_a = low ? side.body_first : side.body_last;
   bool seeded = false;
-  for (int k = 0; k <= side.body_last - side.body_first && ml.size() < side.end_fit; ++k) {
+  for (int k = 0; k <= side.body_last - side.body_first && ml.size() < side.end_fit_sections; ++k) {
     const int a = low ? side.body_first + k : side.body_last - k;
     const Section& s = side.at(a);
     if (!s.body || s.rejected) continue;
@@ -90,8 +93,8 @@ FreeEnd measure_free_end(const SideSections& side, const evaluation::Line2& side
   TipSearch search;
   search.seed = fr.xy(seed_a + 0.5, side.at(seed_a).centre);
   search.outward = outward;
-  search.threshold = 0.5 * core;
-  search.box = end_region(side, search.seed, outward, w + options.band_margin_px + 2);
+  search.threshold = tuning.tip_threshold_ratio * core;
+  search.box = end_region(side, search.seed, outward, w + tuning.window_margin_px + tuning.tip_box_margin_px);
   FreeEnd result;
   const std::optional<TipExtreme> far = farthest_dark_point(*fr.grey, *side.grid, search);
   if (!far) {
@@ -107,12 +110,14 @@ FreeEnd measure_free_end(const SideSections& side, const evaluation::Line2& side
   guess.outward = outward;
   guess.darkness = k_local;
   guess.sigma = sigma;
+  guess.half_angle_rad = tuning.tip_half_angle_deg * std::numbers::pi / 180;
   const TipFit fit = fit_end_tip(*fr.grey, *side.grid, guess);
   result.radius = fit.radius;
   result.rms = fit.rms;
   // A tip sharper than the spot cannot be drawn by it; a much blunter one is a cut, or a dot burnt larger
   // than the spot, whose centre is ambiguous by R − w/2. A square cut also misfits at its corners.
-  result.round = fit.converged && fit.rms < 0.06 && fit.radius > 0.75 * (w / 2) && fit.radius < 1.5 * (w / 2);
+  result.round = fit.converged && fit.rms < tuning.round_tip_max_rms && fit.radius > tuning.round_tip_min_radius * (w / 2) &&
+                 fit.radius < tuning.round_tip_max_radius * (w / 2);
   // The footprint's extent along u from the fit, or from the farthest dark pixel (its centre is within
   // about a pixel of the edge at half darkness) when the fit strays from it.
   const double pixel_extent = far->point.dot(outward) + 0.5;

@@ -8,12 +8,13 @@
 #include <vector>
 
 #include "stiffpath/evaluation/path_metrics.hpp"
+#include "stiffpath/vision/scan/tuning.hpp"
 
 namespace stiffpath::vision {
 
 using evaluation::Point2;
 
-//! Options of the scan analysis. Pixel-sized settings are in px of the scan.
+//! Options of the scan analysis.
 struct ScanOptions {
   //! Straight sides of the path: 1 a line, 3 a triangle, N a polyline; 0 = any: a straight line, else
   //! the fewest straight sides (up to max_auto_sides) that join into one chain or loop.
@@ -21,10 +22,6 @@ struct ScanOptions {
   int max_auto_sides = 4;  //!< most sides tried for sides = 0 (lines, corners, triangles, quadrilaterals)
   //! Spline cutoff wavelength and corner trim of the metrics (defaults 1 mm and 1 mm).
   evaluation::PathMetricsOptions metrics;
-  int cell_px = 4;                  //!< cell of the coarse grid used to find the mark (px)
-  double band_margin_px = 4.0;      //!< cross-section half-window beyond the mark's half extent (covers the blur)
-  int flank_px = 5;                 //!< paper pixels on each side of a cross-section for its background
-  int baseline_window = 31;         //!< cross-sections averaged for the background level
   double min_mark_length_m = 1e-3;  //!< dark features smaller than this are dust specks
   std::string label = "<image>";    //!< names the image in errors
   //! Analyse only this region of the image (px; empty = the whole image). Every position reported
@@ -35,6 +32,8 @@ struct ScanOptions {
   double min_plate_mark_m = 10e-3;
   //! Called now and then with the fraction of the work done (0..1), from the calling thread; may be empty.
   std::function<void(double)> progress;
+  //! The method's tuning constants (cell size, windows, tolerances); the defaults are the documented method.
+  ScanTuning tuning;
 };
 
 //! What the scan says about one side beyond the path metrics.
