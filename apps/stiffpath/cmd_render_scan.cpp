@@ -13,6 +13,7 @@
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/evaluation/metrics_json.hpp"
 #include "stiffpath/vision/io/image_io.hpp"
+#include "stiffpath/vision/io/resolution.hpp"
 #include "stiffpath/vision/render/plate.hpp"
 #include "stiffpath/vision/render/render.hpp"
 
@@ -183,7 +184,7 @@ void add_render_scan_command(CLI::App& app) {
   cmd->add_option("--corner-trim-mm", o->trim_mm, "Corner trim of the ground truth's metrics (mm), as for scan")->capture_default_str()
       ->check(within(0, 1000, "mm"));
   cmd->add_option("--dpi", o->render.dpi, "Resolution (dpi)")->capture_default_str()
-      ->check(within(10, 100000.0, "dpi"));
+      ->check(within(vision::kMinScanDpi, vision::kMaxScanDpi, "dpi"));
   cmd->add_option("--blur-px", o->render.blur_px, "Scanner blur sigma (px)")->capture_default_str()
       ->check(within(0, 1000, "px"));
   cmd->add_option("--noise", o->render.noise, "Pixel noise sigma (fraction of full scale)")->capture_default_str()

@@ -9,6 +9,7 @@
 #include "stiffpath/core/csv.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/vision/io/image_io.hpp"
+#include "stiffpath/vision/io/resolution.hpp"
 #include "stiffpath/vision/scan/overlay.hpp"
 #include "stiffpath/vision/scan/scan.hpp"
 
@@ -164,7 +165,7 @@ void add_scan_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("scan", "Measure a laser-marked path on a scan (thesis 4.6): length, deviation area, width");
   cmd->add_option("image", opts->image, "Scan (PNG, TIFF or JPEG; grey or colour; 8 or 16 bit)")->required();
   opts->dpi_option = cmd->add_option("--dpi", opts->dpi, "Resolution (dpi); overrides the file's metadata (default: metadata, else 1200)")
-      ->check(within(10, 100000.0, "dpi"));
+      ->check(within(vision::kMinScanDpi, vision::kMaxScanDpi, "dpi"));
   opts->shape_option = cmd->add_option("--shape", opts->shape, "line, triangle, polyline:N or any (default line; any with --all-marks)");
   cmd->add_option("--roi", opts->roi, "Measure only the region X,Y,W,H: mm from the image's top-left corner, or pixels with a px suffix (10,20,80,30px)");
   cmd->add_flag("--all-marks", opts->all_marks, "Measure every mark on the scan (a plate): one result per mark with its bounding box");

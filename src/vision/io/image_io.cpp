@@ -26,8 +26,8 @@ std::string lower_extension(const std::filesystem::path& path) {
 }
 
 void check_dpi(double dpi, const SourceLocation& where, const char* what) {
-  if (!(dpi > 0.0) || !std::isfinite(dpi) || dpi > 1e5) {
-    throw Error(where, fmt::format("{} must be a positive resolution in dpi, got {}", what, dpi));
+  if (!(dpi >= kMinScanDpi) || !(dpi <= kMaxScanDpi)) {
+    throw Error(where, fmt::format("{} must be a resolution of {} to {} dpi, got {}", what, kMinScanDpi, kMaxScanDpi, dpi));
   }
 }
 
@@ -89,24 +89,39 @@ ScanImage load_scan(const std::filesystem::path& path, std::optional<double> dpi
     scan.dpi_source = "--dpi";
     return scan;
   }
-  if (const auto res = read_resolution(path)) {
-    if (std::abs(res->dpi_x - res->dpi_y) > 1e-6 * res->dpi_x) {
-      throw Error(where, fmt::format("the {} metadata gives different resolutions along x ({} dpi) and y ({} dpi); "
-                                     "non-square pixels are not supported: resample the scan or pass --dpi",
-                                     res->source, res->dpi_x, res->dpi_y));
+  check_dpi(default_dpi, where, "default resolution");
+  const StoredResolution res = read_stored_resolution(path);
+  if (res.kind == StoredResolution::Kind::value) {
+    // A stored density is used only within the resolutions a scan can have: outside, it is a wrong scale
+    // (a 1 px/m PNG would make a 0.2 mm mark 9 m wide), so the scan is refused rather than measured with it.
+    for (const double dpi : {res.dpi_x, res.dpi_y}) {
+      if (!(dpi >= kMinScanDpi) || !(dpi <= kMaxScanDpi)) {
+        throw Error(where, fmt::format("RANGE: the file's {} stores {} ({:.6g} dpi), outside the {} to {} dpi a scan can have: "
+                                       "its resolution is unknown; pass --dpi to give it",
+                                       res.source, res.stored, dpi, kMinScanDpi, kMaxScanDpi));
+      }
     }
-    scan.dpi = res->dpi_x;
-    scan.dpi_source = res->source;
+    if (std::abs(res.dpi_x - res.dpi_y) > 1e-6 * res.dpi_x) {
+      throw Error(where, fmt::format("the {} metadata gives different resolutions along x ({} dpi) and y ({} dpi), {}; "
+                                     "non-square pixels are not supported: resample the scan or pass --dpi",
+                                     res.source, res.dpi_x, res.dpi_y, res.stored));
+    }
+    scan.dpi = res.dpi_x;
+    scan.dpi_source = res.source;
     if (scan.dpi < 300.0) {
       scan.warnings.push_back(fmt::format("the file's metadata ({}) says {} dpi, low for a scan of a laser mark; "
-                                          "pass --dpi if it is wrong", res->source, scan.dpi));
+                                          "pass --dpi if it is wrong", res.source, scan.dpi));
     }
     return scan;
   }
-  check_dpi(default_dpi, where, "default resolution");
   scan.dpi = default_dpi;
   scan.dpi_source = "default";
-  scan.warnings.push_back(fmt::format("the file stores no resolution; assumed {} dpi (pass --dpi to set it)", default_dpi));
+  if (res.kind == StoredResolution::Kind::aspect_only) {
+    scan.warnings.push_back(fmt::format("the file's {} stores only {}, no resolution; assumed {} dpi (pass --dpi to set it)",
+                                        res.source, res.stored, default_dpi));
+  } else {
+    scan.warnings.push_back(fmt::format("the file stores no resolution; assumed {} dpi (pass --dpi to set it)", default_dpi));
+  }
   return scan;
 }
 

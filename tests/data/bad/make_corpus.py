@@ -3,8 +3,8 @@
 
 Each case puts one bad value at a known place of an otherwise valid file, so the expected location
 (line:column, or the record number of a binary file) and the offending text are known independently
-of the tool's output. usage: make_corpus.py STIFFPATH_CLI   (the CLI writes the valid joint and model
-files that some cases start from).
+of the tool's output. usage: make_corpus.py STIFFPATH_CLI [GROUP...]   (the CLI writes the valid joint and
+model files that some cases start from; GROUPs, default all: tables robots model joints images).
 """
 import json
 import os
@@ -192,16 +192,30 @@ def images():
         idat = png_chunk(b"IDAT", zlib.compress(b"\x00" * 64))
         write("image", name, sig + ihdr + idat + png_chunk(b"IEND", b""), "-", str(w))
     write("image", "not_an_image.png", b"this is text, not a PNG\n", "-", "not a readable image")
+    # A resolution outside the 10..100000 dpi of a scan: refused, naming what the file stores (a 1 px/m PNG
+    # was measured as a 237 000 mm line; 0 px/m was reported as "stores no resolution").
+    grey = png_chunk(b"IHDR", struct.pack(">IIBBBBB", 4, 4, 8, 0, 0, 0, 0))
+    pixels = png_chunk(b"IDAT", zlib.compress(b"\x00\xc8\xc8\xc8\xc8" * 4))
+    for name, ppm in (("png_1_px_per_m.png", 1), ("png_0_px_per_m.png", 0), ("png_4e9_px_per_m.png", 4_000_000_000)):
+        phys = png_chunk(b"pHYs", struct.pack(">IIB", ppm, ppm, 1))
+        write("image", name, sig + grey + phys + pixels + png_chunk(b"IEND", b""), "-", f"{ppm} × {ppm} px/m")
 
 
 def main():
     cli = sys.argv[1]
-    tables()
-    robots()
+    only = set(sys.argv[2:])  # groups to write (default: all): tables robots model joints images
+    wanted = lambda group: not only or group in only
+    if wanted("tables"):
+        tables()
+    if wanted("robots"):
+        robots()
     with tempfile.TemporaryDirectory() as tmp:
-        model(cli, tmp)
-        joints(cli, tmp)
-    images()
+        if wanted("model"):
+            model(cli, tmp)
+        if wanted("joints"):
+            joints(cli, tmp)
+    if wanted("images"):
+        images()
     for reader, lines in expect.items():
         with open(os.path.join(here, reader, "expect.txt"), "w") as f:
             f.write("# file<TAB>where (line:column, record N, header or - for the file)<TAB>text the message must name\n")

@@ -17,6 +17,30 @@ struct Resolution {
   std::string source;  //!< where it came from: "PNG pHYs", "TIFF XResolution", "JPEG JFIF" or "JPEG Exif"
 };
 
+//! The resolutions a scan may have (dpi): below, a pixel is wider than 2.5 mm; above, smaller than 0.25 µm. A
+//! file whose metadata says something outside is refused by load_scan (pass --dpi), never measured with it.
+inline constexpr double kMinScanDpi = 10.0;
+inline constexpr double kMaxScanDpi = 100000.0;
+
+//! What an image file's metadata says about its resolution, whatever it is (for messages that say so).
+struct StoredResolution {
+  enum class Kind {
+    none,         //!< the file stores nothing about it (or is not a PNG, TIFF or JPEG, or cannot be read)
+    aspect_only,  //!< only the pixels' aspect ratio: PNG pHYs unit 0, TIFF ResolutionUnit 1, JPEG JFIF units 0
+    value,        //!< a density in an absolute unit: dpi_x and dpi_y hold it, converted, whatever its size
+  };
+  Kind kind = Kind::none;
+  double dpi_x = 0, dpi_y = 0;  //!< for Kind::value: the stored densities in dpi (0 for a zero or undefined one)
+  std::string source;           //!< "PNG pHYs", "TIFF XResolution", "JPEG JFIF" or "JPEG Exif" (empty for none)
+  std::string stored;           //!< the stored values in the file's own unit, e.g. "1 × 1 px/m", "0 × 0 dots per inch"
+};
+
+//! Parses what a whole file held in memory stores about its resolution.
+StoredResolution stored_resolution_from_memory(std::span<const std::uint8_t> bytes);
+//! The same for a file on disk, reading only the parts it needs (the TIFF directory may sit at the end of
+//! the file); Kind::none when it cannot be read.
+StoredResolution read_stored_resolution(const std::filesystem::path& path);
+
 //! Parses the resolution from a whole file held in memory. nullopt when the format is not PNG,
 //! TIFF or JPEG, when the file stores no resolution or only an aspect ratio (unit "unknown"), or
 //! when the stored value is not a positive finite number. A PNG's integer pixels-per-metre that is
