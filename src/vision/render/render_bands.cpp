@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "render_internal.hpp"
+#include "render_sheet.hpp"
 #include "stiffpath/core/error.hpp"
 
 namespace stiffpath::vision::detail {
@@ -59,9 +60,31 @@ struct Speck {
 }  // namespace
 
 void check_image_size(double width_px, double height_px) {
-  if (width_px * height_px > 200e6) {
-    throw Error(fmt::format("render: the image would be {:.0f} × {:.0f} px, above the 200 Mpx limit", width_px, height_px));
+  if (!(width_px * height_px <= kMaxRenderPixels)) {
+    throw Error(fmt::format("render: the image would be {:.0f} × {:.0f} px, above the {:.0f} Mpx limit", width_px, height_px,
+                            kMaxRenderPixels / 1e6));
   }
+}
+
+void check_path_points(double points, const std::string& what) {
+  if (!(points <= static_cast<double>(kMaxRenderPathPoints))) {
+    throw Error(fmt::format("render: {} would take {:.4g} points, above the budget of {} points of path for one render", what,
+                            points, kMaxRenderPathPoints));
+  }
+}
+
+cv::Mat label_coverage(const Scene::Text& label, int thickness, cv::Point& origin) {
+  const int height = static_cast<int>(std::lround(label.height_px));
+  const double scale = cv::getFontScaleFromHeight(cv::FONT_HERSHEY_SIMPLEX, height, thickness);
+  int baseline = 0;
+  const cv::Size size = cv::getTextSize(label.text, cv::FONT_HERSHEY_SIMPLEX, scale, thickness, &baseline);
+  const int pad = thickness + 2;
+  origin = cv::Point(pad, pad + size.height);
+  cv::Mat letters = cv::Mat::zeros(size.height + baseline + 2 * pad, size.width + 2 * pad, CV_8U);
+  cv::putText(letters, label.text, origin, cv::FONT_HERSHEY_SIMPLEX, scale, cv::Scalar(255), thickness, cv::LINE_AA);
+  cv::Mat coverage;
+  letters.convertTo(coverage, CV_32F, 1.0 / 255);
+  return coverage;
 }
 
 void rasterise(const Scene& scene, const RenderOptions& o, const RowSink& sink) {
@@ -92,6 +115,7 @@ void rasterise(const Scene& scene, const RenderOptions& o, const RowSink& sink) 
   const double full_scale = o.bit_depth == 8 ? 255.0 : 65535.0;
   const int depth = o.bit_depth == 8 ? CV_8U : CV_16U;
   cv::Mat noise_row(1, cols, CV_32F), coarse_row(1, std::max(coarse.cols, 1), CV_32F), texture_row(1, cols, CV_32F, cv::Scalar(0));
+  SheetRow sheet;
   for (int y0 = 0; y0 < rows; y0 += kBand) {
     const int y1 = std::min(rows, y0 + kBand);
     // Coverage of the band and its halo, so the blur sees the rows beyond the band (at the image's top
@@ -112,6 +136,12 @@ void rasterise(const Scene& scene, const RenderOptions& o, const RowSink& sink) 
       letters.convertTo(as_float, CV_32F, 1.0 / 255);
       coverage = cv::max(coverage, as_float);
     }
+    for (const auto& sprite : scene.sprites) {
+      const cv::Rect in_image = cv::Rect(sprite.at, sprite.coverage.size()) & cv::Rect(0, c0, cols, c1 - c0);
+      if (in_image.empty()) continue;
+      cv::Mat into = coverage(in_image - cv::Point(0, c0));
+      cv::max(into, sprite.coverage(in_image - sprite.at), into);
+    }
     if (o.blur_px > 0.0) cv::GaussianBlur(coverage, coverage, cv::Size(0, 0), o.blur_px);
     cv::Mat dust = cv::Mat::zeros(y1 - y0, cols, CV_32F);
     for (const auto& s : specks) {
@@ -125,6 +155,11 @@ void rasterise(const Scene& scene, const RenderOptions& o, const RowSink& sink) 
       dust(in_band) = cv::max(dust(in_band), local * s.strength);
     }
 
+    cv::Mat smudges;
+    if (scene.sheet) {
+      smudges = cv::Mat::zeros(y1 - y0, cols, CV_32F);
+      draw_smudges(*scene.sheet, y0, smudges);
+    }
     cv::Mat out(y1 - y0, cols, CV_MAKETYPE(depth, o.colour ? 3 : 1));
     for (int y = y0; y < y1; ++y) {
       rng.fill(noise_row, cv::RNG::NORMAL, 0.0, 1.0);
@@ -148,9 +183,15 @@ void rasterise(const Scene& scene, const RenderOptions& o, const RowSink& sink) 
       const float* spk = dust.ptr<float>(y - y0);
       const float* nz = noise_row.ptr<float>(0);
       const double yn = static_cast<double>(y) / rows;
+      if (scene.sheet) sheet_row(*scene.sheet, y, cols, smudges.ptr<float>(y - y0), sheet);
       for (int x = 0; x < cols; ++x) {
         const double illumination = 1.0 - o.shading * (0.6 * x / cols + 0.4 * yn * yn);
-        const double paper = o.paper_level * illumination * (1.0 + o.texture * tex[x]);
+        double paper = o.paper_level * illumination * (1.0 + o.texture * tex[x]);
+        if (scene.sheet) {
+          // On a bed: the page's share of the pixel is paper (curled, smudged), the rest the lid and its shadow.
+          const auto i = static_cast<std::size_t>(x);
+          paper = sheet.page[i] * paper * sheet.paper[i] + (1.0 - sheet.page[i]) * illumination * sheet.lid[i];
+        }
         const double v = paper * (1.0 - k * cov[x]) * (1.0 - k * spk[x]) + o.noise * nz[x];
         const double q = std::clamp(std::round(v * full_scale), 0.0, full_scale);
         if (o.colour) {

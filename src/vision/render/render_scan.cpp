@@ -1,4 +1,4 @@
-// The synthetic scanner: places a path (or a plate's marks and labels) on the image, works out the truth, rasterises.
+// The synthetic scanner: places a path on the image, works out the truth, rasterises.
 #include <cmath>
 #include <fmt/format.h>
 
@@ -28,12 +28,6 @@ void check_render_options(const RenderOptions& o) {
 }  // namespace detail
 
 namespace {
-
-std::vector<Point2> joined(const std::vector<std::vector<Point2>>& sides) {
-  std::vector<Point2> out;
-  for (const auto& side : sides) out.insert(out.end(), side.begin(), side.end());
-  return out;
-}
 
 // Rotates the sides, places them margin_m inside an image just large enough (centred), and returns the
 // scene and the placed sides (m, image frame).
@@ -75,56 +69,6 @@ detail::Scene place(const std::vector<std::vector<Point2>>& sides, const RenderO
   return scene;
 }
 
-detail::Scene place_plate(const Plate& plate, const RenderOptions& o, std::vector<PlateMarkTruth>& marks) {
-  const double px_per_m = o.dpi / 0.0254;
-  if (!(plate.width_m > 0.0) || !(plate.height_m > 0.0) || !std::isfinite(plate.width_m * plate.height_m)) {
-    throw Error(fmt::format("render: the page must have a positive size, got {} × {} mm", plate.width_m * 1e3, plate.height_m * 1e3));
-  }
-  const double width_px = std::ceil(plate.width_m * px_per_m), height_px = std::ceil(plate.height_m * px_per_m);
-  detail::check_image_size(width_px, height_px);
-  detail::Scene scene;
-  scene.cols = static_cast<int>(width_px);
-  scene.rows = static_cast<int>(height_px);
-  scene.radius_px = o.mark_width_m * px_per_m / 2;
-  const double r = o.mark_width_m / 2;
-  for (std::size_t k = 0; k < plate.marks.size(); ++k) {
-    const auto& mark = plate.marks[k];
-    if (mark.sides.empty()) throw Error(fmt::format("render: mark {} has no path", k + 1));
-    Point2 lo{1e300, 1e300}, hi{-1e300, -1e300};
-    for (const auto& side : mark.sides) {
-      if (side.size() < 2) throw Error(fmt::format("render: a side of mark {} has fewer than two points", k + 1));
-      for (const auto& p : side) {
-        if (!p.allFinite()) throw Error(fmt::format("render: a point of mark {} is not finite", k + 1));
-        lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-      }
-    }
-    if (lo.x() - r < 0 || lo.y() - r < 0 || hi.x() + r > plate.width_m || hi.y() + r > plate.height_m) {
-      throw Error(fmt::format("render: mark {} (x {:.2f}..{:.2f} mm, y {:.2f}..{:.2f} mm) does not fit on the {:.1f} × {:.1f} mm page",
-                              k + 1, lo.x() * 1e3, hi.x() * 1e3, lo.y() * 1e3, hi.y() * 1e3, plate.width_m * 1e3, plate.height_m * 1e3));
-    }
-    PlateMarkTruth truth;
-    truth.sides = mark.sides;
-    truth.closed = mark.closed;
-    truth.truth = evaluation::measure_sides(mark.sides, mark.closed, o.truth_options);
-    truth.box_m = cv::Rect2d(lo.x(), lo.y(), hi.x() - lo.x(), hi.y() - lo.y());
-    marks.push_back(std::move(truth));
-    std::vector<Point2> polyline;
-    for (const auto& p : joined(mark.sides)) polyline.push_back(p * px_per_m);
-    scene.strokes_px.push_back(std::move(polyline));
-  }
-  for (const auto& label : plate.labels) {
-    if (!label.at_m.allFinite() || !(label.height_m > 0.0) || label.height_m > 0.1) {
-      throw Error(fmt::format("render: label '{}' needs a finite position and a height in (0, 100] mm", label.text));
-    }
-    if (label.at_m.x() < 0 || label.at_m.y() - label.height_m < 0 || label.at_m.x() > plate.width_m || label.at_m.y() > plate.height_m) {
-      throw Error(fmt::format("render: label '{}' at x = {:.1f} mm, y = {:.1f} mm is not on the page", label.text,
-                              label.at_m.x() * 1e3, label.at_m.y() * 1e3));
-    }
-    scene.labels.push_back({label.text, label.at_m * px_per_m, label.height_m * px_per_m});
-  }
-  return scene;
-}
-
 // The scan's metadata and ground truth, and the scene its image is made from.
 detail::Scene prepare(const std::vector<std::vector<Point2>>& sides, bool closed, const RenderOptions& o, RenderedScan& scan) {
   detail::check_render_options(o);
@@ -154,26 +98,6 @@ RenderedScan render_scan(const std::vector<std::vector<Point2>>& sides, bool clo
   RenderedScan scan;
   scan.image = detail::rasterise_image(prepare(sides, closed, o, scan), o);
   return scan;
-}
-
-RenderedPlate render_plate(const Plate& plate, const RenderOptions& o, const RowSink& sink) {
-  detail::check_render_options(o);
-  RenderedPlate out;
-  const detail::Scene scene = place_plate(plate, o, out.marks);
-  out.dpi = o.dpi;
-  out.mark_width_m = o.mark_width_m;
-  detail::rasterise(scene, o, sink);
-  return out;
-}
-
-RenderedPlate render_plate(const Plate& plate, const RenderOptions& o) {
-  detail::check_render_options(o);
-  RenderedPlate out;
-  const detail::Scene scene = place_plate(plate, o, out.marks);
-  out.dpi = o.dpi;
-  out.mark_width_m = o.mark_width_m;
-  out.image = detail::rasterise_image(scene, o);
-  return out;
 }
 
 }  // namespace stiffpath::vision

@@ -33,6 +33,12 @@ std::vector<std::vector<Point2>> sample_shape(const PathShape& shape, const Wigg
   }
   const double step = wiggle.amplitude_m != 0.0 ? std::min(step_m, wiggle.wavelength_m / 100.0) : step_m;
   const std::size_t sides = shape.closed ? n : n - 1;
+  double points = 0;  // the budget, before any point is made
+  for (std::size_t k = 0; k < sides; ++k) points += std::ceil((shape.vertices[(k + 1) % n] - shape.vertices[k]).norm() / step) + 1;
+  if (!(points <= static_cast<double>(kMaxRenderPathPoints))) {
+    throw Error(fmt::format("the path would take {:.4g} points at a step of {:.3g} µm{}, above the render budget of {} points", points,
+                            step * 1e6, wiggle.amplitude_m != 0.0 ? " (a hundredth of the wiggle's wavelength)" : "", kMaxRenderPathPoints));
+  }
   std::vector<std::vector<Point2>> out;
   double s0 = 0.0;  // arc length at the start of the side
   for (std::size_t k = 0; k < sides; ++k) {
@@ -67,6 +73,10 @@ std::vector<Point2> resample_path(const std::vector<Point2>& points, double step
   for (std::size_t i = 1; i < points.size(); ++i) total += (points[i] - points[i - 1]).norm();
   if (points.size() < 2 || !(total > 0.0)) throw Error("a path needs at least two distinct points");
   if (!std::isfinite(total)) throw Error("a path point is not finite");
+  if (!(std::ceil(total / step_m) < static_cast<double>(kMaxRenderPathPoints))) {
+    throw Error(fmt::format("the path is {:.0f} mm long: resampled every {:.3g} µm it would take {:.4g} points, above the render budget of {} "
+                            "points", total * 1e3, step_m * 1e6, std::ceil(total / step_m) + 1, kMaxRenderPathPoints));
+  }
   const auto count = static_cast<std::size_t>(std::ceil(total / step_m));
   const double step = total / static_cast<double>(count);
   std::vector<Point2> out;
