@@ -69,18 +69,31 @@ MarkComponent mark_of(const CoarseGrid& grid, const Features& features, const Fe
 MarkComponent find_mark(const CoarseGrid& grid, double px_per_m, const ScanOptions& options) {
   const SourceLocation where{options.label, 0, 0};
   Features features = find_features(grid);
+  // Features that are not marks (the paper's edge on the lid, smudges) are set aside first, with a warning.
+  const cv::Mat paper = paper_cells(grid);
   std::vector<const Feature*> order;
-  for (const auto& f : features.list) order.push_back(&f);
+  std::vector<std::string> warnings;
+  for (const auto& f : features.list) {
+    if (f.extent_px >= options.min_mark_length_m * px_per_m) {
+      if (const std::string artefact = paper_artefact(grid, features, f, paper, px_per_m, options.tuning); !artefact.empty()) {
+        const Point2 at{(f.box.x + f.box.width / 2.0) * grid.cell, (f.box.y + f.box.height / 2.0) * grid.cell};
+        warnings.push_back(fmt::format("ignored a dark feature {:.2f} mm across near {}: {}", f.extent_px / px_per_m * 1e3,
+                                       position_text(at, px_per_m, options), artefact));
+        continue;
+      }
+    }
+    order.push_back(&f);
+  }
   std::sort(order.begin(), order.end(), [](const Feature* a, const Feature* b) { return a->mass > b->mass; });
   const double min_px = options.min_mark_length_m * px_per_m;
   const auto to_mm = [&](double px) { return px / px_per_m * 1e3; };
   if (order.empty() || order.front()->extent_px < min_px) {
-    throw Error(where, fmt::format("no mark found: {}", order.empty()
-                                       ? std::string("no feature is darker than the paper's noise")
-                                       : fmt::format("the largest dark feature is only {:.2f} mm across", to_mm(order.front()->extent_px))));
+    std::string why = order.empty() ? std::string("no feature is darker than the paper's noise")
+                                    : fmt::format("the largest dark feature is only {:.2f} mm across", to_mm(order.front()->extent_px));
+    for (const auto& w : warnings) why += "; " + w;
+    throw Error(where, "no mark found: " + why);
   }
   const Feature& main = *order.front();
-  std::vector<std::string> warnings;
   int specks = 0;
   for (std::size_t i = 1; i < order.size(); ++i) {
     const Feature& f = *order[i];

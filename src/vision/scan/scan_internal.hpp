@@ -50,6 +50,14 @@ struct Features {
 };
 Features find_features(const CoarseGrid& grid);
 
+//! The cells away from every dark feature (CV_8U, non-zero there): the paper (or the lid) around them.
+cv::Mat paper_cells(const CoarseGrid& grid);
+//! Why a dark feature is not a laser mark — the paper's edge (the paper beyond it differs from one side to the
+//! other by more than ScanTuning::edge_step) or a smudge or shadow (wider than ScanTuning::max_mark_width_m) —
+//! or empty when it may be one. `paper` is paper_cells(grid).
+std::string paper_artefact(const CoarseGrid& grid, const Features& features, const Feature& feature, const cv::Mat& paper,
+                           double px_per_m, const ScanTuning& tuning);
+
 //! A mark: one feature's cells and what they tell about it.
 struct MarkComponent {
   int label = 0;                 //!< the feature's label

@@ -1,4 +1,6 @@
 // The scan result as JSON: the shared path metrics plus the scan's own figures and warnings, units in the keys.
+#include <cmath>
+
 #include "stiffpath/core/units.hpp"
 #include "stiffpath/evaluation/metrics_json.hpp"
 #include "stiffpath/vision/scan/scan.hpp"
@@ -26,7 +28,19 @@ nlohmann::json to_json(const ScanResult& r) {
   out["rejected_sections"] = rejected;
   out["specks_ignored"] = r.specks_ignored;
   out["warnings"] = r.warnings;
+  out["centre_line"] = centre_line_json(r);
   return out;
+}
+
+nlohmann::json centre_line_json(const ScanResult& r) {
+  const auto tenth_um = [](double m) { return std::round(units::m_to_mm(m) * 1e4) / 1e4; };  // mm, to 0.1 µm
+  nlohmann::json sides = nlohmann::json::array();
+  for (const auto& side : r.sides) {
+    nlohmann::json points = nlohmann::json::array();
+    for (const auto& p : side.centres) points.push_back({tenth_um(p.x()), tenth_um(p.y())});
+    sides.push_back(std::move(points));
+  }
+  return {{"frame", kCentreLineFrame}, {"sides_mm", std::move(sides)}};
 }
 
 }  // namespace stiffpath::vision

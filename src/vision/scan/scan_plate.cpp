@@ -59,6 +59,7 @@ PlateResult analyse_plate(const cv::Mat& grey, double dpi, const ScanOptions& op
   plate.height_px = grey.rows;
   plate.paper_noise = grid.sigma;
   const double cell = grid.cell;
+  const cv::Mat paper = detail::paper_cells(grid);
   std::vector<cv::Rect2d> small;  // features too small to be marks
   for (const auto& f : features.list) {
     if (f.extent_px < options.min_mark_length_m * px_per_m) {
@@ -68,6 +69,11 @@ PlateResult analyse_plate(const cv::Mat& grey, double dpi, const ScanOptions& op
     }
     const cv::Rect2d box((f.box.x * cell + options.roi_px.x) / px_per_m, (f.box.y * cell + options.roi_px.y) / px_per_m,
                          f.box.width * cell / px_per_m, f.box.height * cell / px_per_m);
+    if (std::string artefact = detail::paper_artefact(grid, features, f, paper, px_per_m, options.tuning); !artefact.empty()) {
+      plate.ignored.push_back({box, std::move(artefact)});
+      done += share;
+      continue;
+    }
     if (f.extent_px < options.min_plate_mark_m * px_per_m) {
       small.push_back(box);
       done += share;
@@ -133,6 +139,13 @@ nlohmann::json to_json(const PlateResult& plate) {
                       {"features", l.features}});
   }
   out["labels"] = std::move(labels);
+  nlohmann::json ignored = nlohmann::json::array();
+  for (const auto& i : plate.ignored) {
+    ignored.push_back({{"box_mm", {round_for_json(units::m_to_mm(i.box_m.x)), round_for_json(units::m_to_mm(i.box_m.y)),
+                                   round_for_json(units::m_to_mm(i.box_m.width)), round_for_json(units::m_to_mm(i.box_m.height))}},
+                       {"reason", i.reason}});
+  }
+  out["ignored"] = std::move(ignored);
   return out;
 }
 

@@ -75,9 +75,19 @@ struct ScanResult {
 //! not split into the requested sides.
 ScanResult analyse_scan(const cv::Mat& grey, double dpi, const ScanOptions& options = {});
 
+//! The frame of every position a scan reports, in words (for files that carry positions).
+inline constexpr const char* kCentreLineFrame =
+    "mm of the scan from the top-left corner of its image (of the whole image, also with a region), x right, y down";
+
 //! The result with units in the keys: evaluation::to_json(metrics) plus width_mm (and per side),
-//! dpi, image size, mark darkness, specks ignored, rejected sections and the warnings.
+//! dpi, image size, mark darkness, specks ignored, rejected sections, the warnings and the centre line
+//! (centre_line_json).
 nlohmann::json to_json(const ScanResult& result);
+
+//! Each side's centre line: {"frame": kCentreLineFrame, "sides_mm": [[[x, y], …], …]}, the points in marking
+//! order from the side's start (a free end's first or last point is the path's end there: the round spot's
+//! centre), rounded to 0.1 µm.
+nlohmann::json centre_line_json(const ScanResult& result);
 
 //! The shape measured, in the words of ScanOptions: "line", "triangle" (three sides, closed) or "polyline:N".
 std::string shape_name(const ScanResult& result);
@@ -107,10 +117,17 @@ struct PlateLabelArea {
   int features = 0;   //!< dark features in it (letters, or strokes of letters)
 };
 
+//! A dark feature that is not a laser mark: the edge of the paper on the scanner's lid, a smudge, a shadow.
+struct PlateIgnored {
+  cv::Rect2d box_m;    //!< bounding box (m, image frame)
+  std::string reason;  //!< what it is taken for, and why
+};
+
 //! Every mark of a plate.
 struct PlateResult {
   std::vector<PlateMark> marks;       //!< features at least min_plate_mark_m across
   std::vector<PlateLabelArea> labels; //!< smaller features (≥ min_mark_length_m), grouped: labels, lettering, fragments
+  std::vector<PlateIgnored> ignored;  //!< features (≥ min_mark_length_m) that are not marks: the paper's edge, smudges
   int specks_ignored = 0;             //!< dark features smaller than min_mark_length_m
   double dpi = 0;
   int width_px = 0, height_px = 0;
@@ -127,7 +144,8 @@ PlateResult analyse_plate(const cv::Mat& grey, double dpi, const ScanOptions& op
 
 //! The plate as JSON: image size, dpi, specks ignored, one entry per mark with box_mm
 //! [x, y, width, height], status "measured" (with shape and the keys of to_json(ScanResult)) or
-//! "skipped" (with reason), and the label areas (box_mm, features).
+//! "skipped" (with reason), the label areas (box_mm, features) and the features ignored as not marks
+//! (box_mm, reason).
 nlohmann::json to_json(const PlateResult& plate);
 
 }  // namespace stiffpath::vision

@@ -18,6 +18,10 @@ struct ScanTuning {
   double dark_min_darkness = 0.04;           //!< ... and at least this much darker than the paper (fraction)
   double second_mark_ratio = 0.2;            //!< a second feature this large against the mark's extent is a second mark
   double full_darkness_quantile = 0.9;       //!< the darkness of a mark's fully covered cells: this quantile of its cells'
+  double edge_step = 0.02;                   //!< a feature with the paper beyond it brighter on one side by more (fraction, and
+                                             //!< more than the noise) is the paper's edge on the lid, not a mark
+  int edge_reach_cells = 48;                 //!< the paper beyond a feature is looked for within this many cells of it
+  double max_mark_width_m = 1e-3;            //!< a feature wider than this (m) is a smudge or a shadow, not a laser mark
 
   // --- Sides on the coarse grid (find_sides.cpp, ransac_sides.cpp, assign_cells.cpp) ---
   double side_band_cells = 1.5;       //!< a cell is on a side within w/2 + this many cells of its line
