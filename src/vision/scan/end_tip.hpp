@@ -15,13 +15,14 @@ struct TipSearch {
   cv::Rect box;
   Point2 outward{1, 0};  //!< unit vector along the side, pointing out of the mark at this end
   double threshold = 0;
+  double seed_reach_px = 0;    //!< the flood starts at the darkest pixel within this distance across the seed
 };
 //! The farthest such pixel along `outward`.
 struct TipExtreme {
   Point2 point{0, 0};        //!< its centre (image px), moved across to the darkness-weighted centre of the pixels within 1.5 px of the extreme
   bool at_box_edge = false;  //!< a dark pixel that far out lies on the box's edge: the mark may go on outside the box
 };
-//! nullopt if the seed is not dark.
+//! nullopt if no pixel near the seed is dark.
 std::optional<TipExtreme> farthest_dark_point(const cv::Mat& grey, const CoarseGrid& grid, const TipSearch& search);
 
 //! Start values of the tip fit (image px).

@@ -94,13 +94,21 @@ FreeEnd measure_free_end(const SideSections& side, const evaluation::Line2& side
   search.seed = fr.xy(seed_a + 0.5, side.at(seed_a).centre);
   search.outward = outward;
   search.threshold = tuning.tip_threshold_ratio * core;
+  search.seed_reach_px = w / 2;
   search.box = end_region(side, search.seed, outward, w + tuning.window_margin_px + tuning.tip_box_margin_px);
   FreeEnd result;
   const std::optional<TipExtreme> far = farthest_dark_point(*fr.grey, *side.grid, search);
   if (!far) {
+    // Nothing dark where the last section was measured: the end is somewhere between that section and the
+    // far side of the search box (the side's own cells beyond it, widened), no farther.
     result.cap = search.seed;
     result.round = false;
-    result.uncertainty_px = 1e9;
+    double reach = 0;
+    const cv::Rect& b = search.box;
+    for (const Point2& corner : {Point2(b.x, b.y), Point2(b.x + b.width, b.y), Point2(b.x, b.y + b.height), Point2(b.x + b.width, b.y + b.height)}) {
+      reach = std::max(reach, (corner - search.seed).dot(outward));
+    }
+    result.uncertainty_px = reach;
     return result;
   }
   result.continues = far->at_box_edge;
