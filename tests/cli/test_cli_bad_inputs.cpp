@@ -36,6 +36,8 @@ const Reader readers[] = {
     {"model", "run job.gcode --model '{}' -o out.csv", "out.csv"},
     {"joints", "simulate '{}' --marks-csv out.csv", "out.csv"},
     {"image", "scan '{}' --overlay out.png", "out.png"},
+    {"plate", "render-scan out.png --plate '{}' --dpi 100", "out.png"},
+    {"mark_csv", "render-scan out.png --path-csv '{}'", "out.png"},
 };
 
 struct Case {
