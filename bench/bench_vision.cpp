@@ -5,8 +5,8 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "stiffpath/evaluation/smoothing_spline.hpp"
-#include "stiffpath/vision/render.hpp"
-#include "stiffpath/vision/scan.hpp"
+#include "stiffpath/vision/render/render.hpp"
+#include "stiffpath/vision/scan/scan.hpp"
 
 namespace {
 using namespace stiffpath;

@@ -8,7 +8,7 @@ build=${1:?build dir, e.g. build/fuzz}
 seconds=${2:-20}
 shift 2 || true
 harnesses=("$@")
-[ ${#harnesses[@]} -gt 0 ] || harnesses=(gcode csv displacement_table campaign repeatability joint_file robot_json model_json image_metadata)
+[ ${#harnesses[@]} -gt 0 ] || harnesses=(gcode csv displacement_table campaign repeatability joint_file robot_json model_json image_metadata plate)
 
 # Seed folders per harness: the shipped data, the test inputs and the malformed-input corpus.
 seeds() {
@@ -22,6 +22,7 @@ seeds() {
     robot_json) echo data/robots tests/data/robots tests/data/bad/robot ;;
     model_json) echo tests/data/fuzz_seeds/model_json tests/data/bad/model ;;
     image_metadata) echo tests/data/fuzz_seeds/image_metadata tests/data/fuzz_regressions/image_metadata tests/data/bad/image ;;
+    plate) echo examples/plates tests/data/fuzz_seeds/plate tests/data/bad/plate ;;
   esac
 }
 

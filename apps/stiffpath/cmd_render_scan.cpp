@@ -8,13 +8,15 @@
 #include "bounded.hpp"
 #include "commands.hpp"
 #include "progress.hpp"
+#include "vision_resources.hpp"
 #include "stiffpath/core/atomic_file.hpp"
 #include "stiffpath/core/csv.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/evaluation/metrics_json.hpp"
-#include "stiffpath/vision/image_io.hpp"
-#include "stiffpath/vision/plate.hpp"
-#include "stiffpath/vision/render.hpp"
+#include "stiffpath/vision/io/image_io.hpp"
+#include "stiffpath/vision/io/resolution.hpp"
+#include "stiffpath/vision/render/plate.hpp"
+#include "stiffpath/vision/render/render.hpp"
 
 namespace stiffpath::cli {
 
@@ -62,6 +64,8 @@ auto render_to(const RenderCliOptions& o, int width, int height, const Render& r
   return result;
 }
 
+// The plate's truth, in the image's frame (mm from its top-left corner, y down): each mark's metrics and box,
+// each fiducial's centre, and where the page lies (image = offset + linear · page).
 nlohmann::json plate_truth(const vision::RenderedPlate& plate, const vision::Plate& page) {
   using evaluation::round_for_json;
   nlohmann::json marks = nlohmann::json::array();
@@ -69,17 +73,40 @@ nlohmann::json plate_truth(const vision::RenderedPlate& plate, const vision::Pla
     nlohmann::json m = evaluation::to_json(plate.marks[k].truth);
     const auto& b = plate.marks[k].box_m;
     m["index"] = k + 1;
+    if (!plate.marks[k].id.empty()) m["id"] = plate.marks[k].id;
     m["box_mm"] = {round_for_json(b.x * 1e3), round_for_json(b.y * 1e3), round_for_json(b.width * 1e3), round_for_json(b.height * 1e3)};
     marks.push_back(std::move(m));
   }
+  nlohmann::json fiducials = nlohmann::json::array();
+  for (std::size_t k = 0; k < plate.fiducials_m.size(); ++k) {
+    const auto& f = page.fiducials[k];
+    fiducials.push_back({{"index", k + 1},
+                         {"centre_mm", {round_for_json(plate.fiducials_m[k].x() * 1e3), round_for_json(plate.fiducials_m[k].y() * 1e3)}},
+                         {"radius_mm", round_for_json(f.shape.ring_radius_m * 1e3)},
+                         {"cross", f.shape.cross}});
+  }
+  const auto& a = plate.placement;
   nlohmann::json out;
   out["page_mm"] = {round_for_json(page.width_m * 1e3), round_for_json(page.height_m * 1e3)};
+  out["page_to_image"] = {{"linear", {{round_for_json(a.linear(0, 0)), round_for_json(a.linear(0, 1))},
+                                      {round_for_json(a.linear(1, 0)), round_for_json(a.linear(1, 1))}}},
+                          {"offset_mm", {round_for_json(a.offset.x() * 1e3), round_for_json(a.offset.y() * 1e3)}},
+                          {"mirrored", a.mirrored()}};
   out["labels"] = page.labels.size();
   out["marks"] = std::move(marks);
+  out["fiducials"] = std::move(fiducials);
   return out;
 }
 
+void render(RenderCliOptions& o);
+
 void run_render(RenderCliOptions& o) {
+  if (!o.plate.empty() && o.plate == o.output) throw Error(fmt::format("{}: the plate file is also the output; an input is never an output", o.output));
+  if (!o.path_csv.empty() && o.path_csv == o.output) throw Error(fmt::format("{}: the path file is also the output; an input is never an output", o.output));
+  within_resources(o.output, "rendering the scan", 0.0, [&] { render(o); });
+}
+
+void render(RenderCliOptions& o) {
   o.render.mark_width_m = o.width_mm * 1e-3;
   o.render.rotation_rad = o.angle_deg * std::numbers::pi / 180.0;
   o.render.margin_m = o.margin_mm * 1e-3;
@@ -92,9 +119,8 @@ void run_render(RenderCliOptions& o) {
   int width = 0, height = 0;
   if (!o.plate.empty()) {
     const vision::Plate page = vision::load_plate(o.plate);
-    const double px_per_m = o.render.dpi / 0.0254;
-    width = static_cast<int>(std::ceil(page.width_m * px_per_m));
-    height = static_cast<int>(std::ceil(page.height_m * px_per_m));
+    const cv::Size size = vision::plate_image_size(page, o.render);  // the budget, before any work
+    width = size.width, height = size.height;
     const auto plate = render_to(o, width, height, [&](const vision::RowSink& sink) {
       return sink ? vision::render_plate(page, o.render, sink) : vision::render_plate(page, o.render);
     });
@@ -117,7 +143,12 @@ void run_render(RenderCliOptions& o) {
       } else {
         throw Error(fmt::format("--shape: expected line, triangle or polyline, got '{}'", o.shape));
       }
-      sides = vision::sample_shape(shape, {o.wiggle_mm * 1e-3, o.wiggle_wavelength_mm * 1e-3, o.wiggle_decay_mm * 1e-3});
+      try {
+        sides = vision::sample_shape(shape, {o.wiggle_mm * 1e-3, o.wiggle_wavelength_mm * 1e-3, o.wiggle_decay_mm * 1e-3});
+      } catch (const Error& e) {  // the budget: say which options asked for it
+        throw Error(fmt::format("--shape {} with --wiggle-mm {} and --wiggle-wavelength-mm {}: {}", o.shape, o.wiggle_mm,
+                                o.wiggle_wavelength_mm, e.message()));
+      }
       closed = shape.closed;
     }
     const cv::Size size = vision::rendered_size(sides, o.render);
@@ -183,7 +214,7 @@ void add_render_scan_command(CLI::App& app) {
   cmd->add_option("--corner-trim-mm", o->trim_mm, "Corner trim of the ground truth's metrics (mm), as for scan")->capture_default_str()
       ->check(within(0, 1000, "mm"));
   cmd->add_option("--dpi", o->render.dpi, "Resolution (dpi)")->capture_default_str()
-      ->check(within(10, 100000.0, "dpi"));
+      ->check(within(vision::kMinScanDpi, vision::kMaxScanDpi, "dpi"));
   cmd->add_option("--blur-px", o->render.blur_px, "Scanner blur sigma (px)")->capture_default_str()
       ->check(within(0, 1000, "px"));
   cmd->add_option("--noise", o->render.noise, "Pixel noise sigma (fraction of full scale)")->capture_default_str()

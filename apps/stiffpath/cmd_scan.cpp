@@ -1,23 +1,28 @@
 // `stiffpath scan`: measures a laser-marked path on a scanned image (thesis §4.6), or every mark of a plate, and prints the metrics.
 #include <cmath>
+#include <filesystem>
 #include <fmt/format.h>
+#include <iterator>
 #include <memory>
 
 #include "bounded.hpp"
 #include "commands.hpp"
 #include "progress.hpp"
+#include "vision_resources.hpp"
+#include "stiffpath/core/atomic_file.hpp"
 #include "stiffpath/core/csv.hpp"
 #include "stiffpath/core/error.hpp"
-#include "stiffpath/vision/image_io.hpp"
-#include "stiffpath/vision/overlay.hpp"
-#include "stiffpath/vision/scan.hpp"
+#include "stiffpath/vision/io/image_io.hpp"
+#include "stiffpath/vision/io/resolution.hpp"
+#include "stiffpath/vision/scan/overlay.hpp"
+#include "stiffpath/vision/scan/scan.hpp"
 
 namespace stiffpath::cli {
 
 namespace {
 
 struct ScanCliOptions {
-  std::string image, shape = "line", overlay, roi;
+  std::string image, shape = "line", overlay, roi, centre_line_csv;
   double dpi = 1200, cutoff_mm = 1.0, trim_mm = 1.0, min_mark_mm = 10.0;
   bool json = false, all_marks = false, quiet = false;
   CLI::Option* dpi_option = nullptr;
@@ -84,6 +89,30 @@ void print_result(const nlohmann::json& out, const std::string& indent) {
   for (const auto& w : out["warnings"]) fmt::print("{}warning: {}\n", indent, w.get<std::string>());
 }
 
+// One row per centre-line point of every side of every mark measured: mark (1 for a single scan, the plate's
+// mark index with --all-marks), side (1-based), the point's position in mm of the scan.
+std::string centre_line_csv(const std::string& image, const std::vector<std::pair<int, const vision::ScanResult*>>& marks) {
+  fmt::memory_buffer out;
+  fmt::format_to(std::back_inserter(out), "# centre lines measured on {}: x_mm, y_mm in {}; each side's points in marking order, "
+                 "a free end's first or last point being the path's end (the round spot's centre)\nmark,side,x_mm,y_mm\n", image,
+                 vision::kCentreLineFrame);
+  for (const auto& [mark, result] : marks) {
+    for (std::size_t k = 0; k < result->sides.size(); ++k) {
+      for (const auto& p : result->sides[k].centres) fmt::format_to(std::back_inserter(out), "{},{},{:.4f},{:.4f}\n", mark, k + 1, p.x() * 1e3, p.y() * 1e3);
+    }
+  }
+  return fmt::to_string(out);
+}
+
+// An output may never be the scan it is made from.
+void check_not_the_image(const std::string& output, const std::string& option, const std::string& image) {
+  if (output.empty()) return;
+  std::error_code ec;
+  const bool same = std::filesystem::equivalent(output, image, ec) ||
+                    std::filesystem::weakly_canonical(output, ec) == std::filesystem::weakly_canonical(image, ec);
+  if (same) throw Error(fmt::format("{} {}: that is the scan being measured; an input is never an output", option, output));
+}
+
 void run_scan(const ScanCliOptions& o) {
   vision::ScanOptions options;
   if (o.shape_option->count() > 0) {
@@ -100,28 +129,43 @@ void run_scan(const ScanCliOptions& o) {
   options.min_plate_mark_m = o.min_mark_mm * 1e-3;
   options.label = o.image;
   const Roi roi = o.roi.empty() ? Roi{} : parse_roi(o.roi);  // parsed before the image is read: a typo fails fast
+  check_not_the_image(o.overlay, "--overlay", o.image);
+  check_not_the_image(o.centre_line_csv, "--centre-line-csv", o.image);
   const auto dpi = o.dpi_option->count() > 0 ? std::optional<double>(o.dpi) : std::nullopt;
   Progress progress("scan", o.quiet);
   progress.update(0.0, "reading the image");
-  const vision::ScanImage scan = vision::load_scan(o.image, dpi);
+  vision::ScanImage scan;
+  within_resources(o.image, "reading the scan", 0.0, [&] { scan = vision::load_scan(o.image, dpi); });
   if (!o.roi.empty()) options.roi_px = roi_pixels(roi, o.roi, scan);
   options.progress = progress.callback();
+  // The analysis holds the image and about 1.1 × its 8-bit pixels more (docs/vision.md), the program ~50 MiB.
+  const double needs = 2.1 * static_cast<double>(scan.grey.total()) + 50e6;
 
   nlohmann::json out;
-  if (o.all_marks) {
-    const vision::PlateResult plate = vision::analyse_plate(scan.grey, scan.dpi, options);
-    progress.finish();
-    if (!o.overlay.empty()) vision::write_image(o.overlay, vision::draw_plate_overlay(scan.grey, plate), scan.dpi);
-    out = vision::to_json(plate);
-    out["warnings"] = scan.warnings;
-  } else {
-    vision::ScanResult result = vision::analyse_scan(scan.grey, scan.dpi, options);
-    progress.finish();
-    result.warnings.insert(result.warnings.begin(), scan.warnings.begin(), scan.warnings.end());
-    if (!o.overlay.empty()) vision::write_image(o.overlay, vision::draw_overlay(scan.grey, result), scan.dpi);
-    out = vision::to_json(result);
-    out["shape"] = vision::shape_name(result);
-  }
+  std::string csv;
+  within_resources(o.image, fmt::format("measuring the {} × {} px scan", scan.grey.cols, scan.grey.rows), needs, [&] {
+    if (o.all_marks) {
+      const vision::PlateResult plate = vision::analyse_plate(scan.grey, scan.dpi, options);
+      progress.finish();
+      if (!o.overlay.empty()) vision::write_image(o.overlay, vision::draw_plate_overlay(scan.grey, plate), scan.dpi);
+      out = vision::to_json(plate);
+      out["warnings"] = scan.warnings;
+      std::vector<std::pair<int, const vision::ScanResult*>> measured;
+      for (const auto& m : plate.marks) {
+        if (m.measured) measured.emplace_back(m.index, &m.result);
+      }
+      if (!o.centre_line_csv.empty()) csv = centre_line_csv(o.image, measured);
+    } else {
+      vision::ScanResult result = vision::analyse_scan(scan.grey, scan.dpi, options);
+      progress.finish();
+      result.warnings.insert(result.warnings.begin(), scan.warnings.begin(), scan.warnings.end());
+      if (!o.overlay.empty()) vision::write_image(o.overlay, vision::draw_overlay(scan.grey, result), scan.dpi);
+      out = vision::to_json(result);
+      out["shape"] = vision::shape_name(result);
+      if (!o.centre_line_csv.empty()) csv = centre_line_csv(o.image, {{1, &result}});
+    }
+  });
+  if (!o.centre_line_csv.empty()) core::write_file_atomically(o.centre_line_csv, csv);
   out["image"] = o.image;
   out["dpi_source"] = scan.dpi_source;
   if (!o.roi.empty()) {
@@ -164,13 +208,15 @@ void add_scan_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("scan", "Measure a laser-marked path on a scan (thesis 4.6): length, deviation area, width");
   cmd->add_option("image", opts->image, "Scan (PNG, TIFF or JPEG; grey or colour; 8 or 16 bit)")->required();
   opts->dpi_option = cmd->add_option("--dpi", opts->dpi, "Resolution (dpi); overrides the file's metadata (default: metadata, else 1200)")
-      ->check(within(10, 100000.0, "dpi"));
+      ->check(within(vision::kMinScanDpi, vision::kMaxScanDpi, "dpi"));
   opts->shape_option = cmd->add_option("--shape", opts->shape, "line, triangle, polyline:N or any (default line; any with --all-marks)");
   cmd->add_option("--roi", opts->roi, "Measure only the region X,Y,W,H: mm from the image's top-left corner, or pixels with a px suffix (10,20,80,30px)");
   cmd->add_flag("--all-marks", opts->all_marks, "Measure every mark on the scan (a plate): one result per mark with its bounding box");
   cmd->add_option("--min-mark-mm", opts->min_mark_mm, "With --all-marks: smaller dark features are listed as labels, not measured (mm)")->capture_default_str()
       ->check(within(0.001, 1000, "mm"));
   cmd->add_option("--overlay", opts->overlay, "Write a picture of the detected centre line, fitted line and spline (PNG)");
+  cmd->add_option("--centre-line-csv", opts->centre_line_csv,
+                  "Write every measured side's centre line: mark,side,x_mm,y_mm in mm of the scan from its image's top-left corner, y down");
   cmd->add_option("--spline-cutoff-mm", opts->cutoff_mm, "Smoothing spline cutoff wavelength (mm)")->capture_default_str()
       ->check(within(0, 10000.0, "mm"));
   cmd->add_option("--corner-trim-mm", opts->trim_mm, "Part of each side next to a corner left out (mm)")->capture_default_str()

@@ -6,6 +6,7 @@
 #include <map>
 
 #include "stiffpath/core/error.hpp"
+#include "stiffpath/core/median.hpp"
 
 namespace stiffpath::simulation {
 namespace {
@@ -64,11 +65,8 @@ void check(const RobustnessOptions& o) {
   }
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
-}
+// A reported statistic of the runs: the textbook median, the mean of the two middle values of an even count.
+double median(std::vector<double> v) { return core::median(std::move(v), core::MedianRule::mean_of_middles); }
 
 }  // namespace
 

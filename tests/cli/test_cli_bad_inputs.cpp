@@ -13,7 +13,7 @@
 
 #include "cli_runner.hpp"
 #include "gcode_corpus.hpp"
-#include "stiffpath/vision/resolution.hpp"
+#include "stiffpath/vision/io/resolution.hpp"
 
 namespace fs = std::filesystem;
 using namespace stiffpath::test;
@@ -36,6 +36,8 @@ const Reader readers[] = {
     {"model", "run job.gcode --model '{}' -o out.csv", "out.csv"},
     {"joints", "simulate '{}' --marks-csv out.csv", "out.csv"},
     {"image", "scan '{}' --overlay out.png", "out.png"},
+    {"plate", "render-scan out.png --plate '{}' --dpi 100", "out.png"},
+    {"mark_csv", "render-scan out.png --path-csv '{}'", "out.png"},
 };
 
 struct Case {

@@ -2,6 +2,10 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <sys/wait.h>
 #include <cmath>
 #include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
@@ -295,6 +299,113 @@ TEST(CliScan, ProgressOnATerminalOnlyAndNeverWithQuiet) {
   const CliResult piped = run_cli("scan l.png", dir.path());
   EXPECT_EQ(piped.err.find('['), std::string::npos) << piped.err;
   EXPECT_EQ(piped.out.find('\r'), std::string::npos);
+}
+
+// The centre line of every mark, in the CSV and in the JSON: the same points, in scan mm from the image's
+// top-left corner (y down), lying on the rendered path (the truth's), with each side's ends at the path's ends.
+TEST(CliScan, CentreLinesOfEveryMarkInTheCsvAndTheJson) {
+  TempDir dir;
+  write_text(dir / "plate.json", R"({"page_mm": [60, 40], "marks": [
+    {"shape": "line", "length_mm": 30, "at_mm": [10, 10], "angle_deg": 4},
+    {"shape": "polyline", "vertices_mm": [[0, 0], [20, 0], [20, 15]], "at_mm": [30, 20]}]})");
+  const CliResult render = run_cli("render-scan plate.png --plate plate.json --texture 0.01 --seed 9 --json", dir.path());
+  ASSERT_EQ(render.exit_code, 0) << render.err;
+  const CliResult scan = run_cli("scan plate.png --all-marks --centre-line-csv lines.csv --json", dir.path());
+  ASSERT_EQ(scan.exit_code, 0) << scan.err;
+  const auto out = scan.json();
+  ASSERT_EQ(out["measured"], 2);
+  std::ifstream csv(dir / "lines.csv");
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_NE(line.find("top-left corner of its image"), std::string::npos) << line;  // the frame, said in the file
+  EXPECT_NE(line.find("y down"), std::string::npos) << line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "mark,side,x_mm,y_mm");
+  std::map<std::pair<int, int>, std::vector<std::array<double, 2>>> rows;
+  while (std::getline(csv, line)) {
+    int mark = 0, side = 0;
+    double x = 0, y = 0;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%d,%d,%lf,%lf", &mark, &side, &x, &y), 4) << line;
+    rows[{mark, side}].push_back({x, y});
+  }
+  ASSERT_EQ(rows.size(), 3u);  // a line and a two-sided polyline
+  // The truth's paths, for the distance of each point from the path it was drawn along.
+  const auto truth = render.json();
+  for (const auto& m : out["marks"]) {
+    const int index = m["index"].get<int>();
+    const auto& sides = m["centre_line"]["sides_mm"];
+    EXPECT_EQ(m["centre_line"]["frame"].get<std::string>().find("mm of the scan"), 0u);
+    for (std::size_t k = 0; k < sides.size(); ++k) {
+      const auto& points = rows[{index, static_cast<int>(k) + 1}];
+      ASSERT_EQ(points.size(), sides[k].size()) << index << " " << k;
+      for (std::size_t i = 0; i < points.size(); i += 97) {
+        EXPECT_NEAR(points[i][0], sides[k][i][0].get<double>(), 1.5e-4);  // both to 0.1 µm, rounded apart
+        EXPECT_NEAR(points[i][1], sides[k][i][1].get<double>(), 1.5e-4);
+      }
+    }
+  }
+  // The line's points lie on the rendered line (30 mm from (10, 10) at 4°), within a few µm, ends included.
+  const auto& line_points = rows[{1, 1}];
+  const double c = std::cos(4 * std::acos(-1.0) / 180), sn = std::sin(4 * std::acos(-1.0) / 180);
+  for (const auto& p : line_points) {
+    const double along = (p[0] - 10) * c + (p[1] - 10) * sn, across = -(p[0] - 10) * sn + (p[1] - 10) * c;
+    EXPECT_NEAR(across, 0.0, 0.004);
+    EXPECT_GE(along, -0.005);
+    EXPECT_LE(along, 30.005);
+  }
+  EXPECT_NEAR(line_points.front()[0], 10.0, 0.005);
+  EXPECT_NEAR(line_points.back()[0], 10 + 30 * c, 0.005);
+  // An output is never the scan itself.
+  const CliResult same = run_cli("scan plate.png --all-marks --centre-line-csv plate.png", dir.path());
+  EXPECT_EQ(same.exit_code, 2);
+  EXPECT_NE(same.err.find("an input is never an output"), std::string::npos) << same.err;
+  EXPECT_FALSE(cv::imread((dir / "plate.png").string()).empty());
+}
+
+// Options in range that ask for more than the renderer's budget are refused before any work, naming the
+// budget and the options (this one asked for 2e8 path points, 5.3 GB, and ended in bad_alloc, exit 1).
+TEST(CliScan, ARenderBeyondItsBudgetIsRefusedBeforeTheWork) {
+  TempDir dir;
+  const CliResult r = run_cli("render-scan big.png --length-mm 2000 --wiggle-mm 0.1 --wiggle-wavelength-mm 0.001 --dpi 10", dir.path());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("--wiggle-wavelength-mm 0.001"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("render budget of 5000000 points"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "big.png"));
+  const CliResult wide = run_cli("render-scan wide.png --length-mm 2000 --margin-mm 900", dir.path());
+  EXPECT_EQ(wide.exit_code, 2) << wide.err;
+  EXPECT_NE(wide.err.find("200 Mpx"), std::string::npos) << wide.err;
+}
+
+// Whatever the memory limit, scan and render-scan end with exit 0 or a refusal (2) that names the limit,
+// never an internal error (a scan that could not start OpenCV's threads once said "internal error:
+// pthread_create has failed"). Below the limit the program cannot even load (exit 127), it is not counted.
+TEST(CliScan, RunningOutOfMemoryIsARefusalThatNamesTheLimit) {
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+  GTEST_SKIP() << "sanitizers reserve far more address space than any limit tried here";
+#else
+  TempDir dir;
+  ASSERT_EQ(run_cli("render-scan l.png --length-mm 60 --texture 0.01", dir.path()).exit_code, 0);
+  int refused = 0, measured = 0;
+  for (int limit_mb = 120; limit_mb <= 420; limit_mb += 20) {
+    const std::string command = "cd '" + dir.path().string() + "' && ulimit -v " + std::to_string(limit_mb * 1024) + " && '" +
+                                std::string(STIFFPATH_CLI) + "' scan l.png --json >/dev/null 2>err.txt";
+    const int status = std::system(("/bin/bash -c \"" + command + "\"").c_str());
+    const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::ifstream err(dir / "err.txt");
+    const std::string text((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());
+    if (code == 127) continue;
+    EXPECT_TRUE(code == 0 || code == 2) << limit_mb << " MiB: exit " << code << ": " << text;
+    EXPECT_EQ(text.find("internal error"), std::string::npos) << limit_mb << " MiB: " << text;
+    if (code == 2) {
+      ++refused;
+      EXPECT_NE(text.find("l.png: RESOURCE: out of memory"), std::string::npos) << text;
+      EXPECT_NE(text.find("ulimit -v"), std::string::npos) << text;
+    }
+    measured += code == 0 ? 1 : 0;
+  }
+  EXPECT_GE(measured, 1);
+  std::printf("[limits] scan under ulimit -v 120..420 MiB: %d refused naming the limit, %d measured\n", refused, measured);
+#endif
 }
 
 }  // namespace

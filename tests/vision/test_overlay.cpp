@@ -6,9 +6,9 @@
 #include <numbers>
 #include <opencv2/imgproc.hpp>
 
-#include "stiffpath/vision/overlay.hpp"
-#include "stiffpath/vision/render.hpp"
-#include "stiffpath/vision/scan.hpp"
+#include "stiffpath/vision/scan/overlay.hpp"
+#include "stiffpath/vision/render/render.hpp"
+#include "stiffpath/vision/scan/scan.hpp"
 
 namespace stiffpath::vision {
 namespace {

@@ -5,8 +5,8 @@
 #include <string>
 
 #include "stiffpath/core/error.hpp"
-#include "stiffpath/vision/render.hpp"
-#include "stiffpath/vision/scan.hpp"
+#include "stiffpath/vision/render/render.hpp"
+#include "stiffpath/vision/scan/scan.hpp"
 
 namespace stiffpath::vision {
 namespace {

@@ -10,9 +10,9 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "stiffpath/core/error.hpp"
-#include "stiffpath/vision/image_io.hpp"
-#include "stiffpath/vision/render.hpp"
-#include "stiffpath/vision/resolution.hpp"
+#include "stiffpath/vision/io/image_io.hpp"
+#include "stiffpath/vision/render/render.hpp"
+#include "stiffpath/vision/io/resolution.hpp"
 
 namespace stiffpath::vision {
 namespace {

@@ -2,12 +2,13 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <fstream>
 #include <opencv2/imgcodecs.hpp>
 
 #include "cli_runner.hpp"
 #include "stiffpath/core/error.hpp"
-#include "stiffpath/vision/image_io.hpp"
-#include "stiffpath/vision/resolution.hpp"
+#include "stiffpath/vision/io/image_io.hpp"
+#include "stiffpath/vision/io/resolution.hpp"
 
 namespace stiffpath::vision {
 namespace {
@@ -127,6 +128,74 @@ TEST(Resolution, LoadScanUsesMetadataOverrideOrDefault) {
   write_image(dir / "c.jpg", small_image(), 150);
   EXPECT_EQ(load_scan(dir / "c.jpg").dpi, 150.0);
   EXPECT_EQ(load_scan(dir / "c.jpg").warnings.size(), 1u);  // suspiciously low for a scan
+}
+
+// A PNG whose pHYs chunk stores these raw values (px per unit, unit 1 = metre, 0 = aspect ratio only).
+std::vector<std::uint8_t> png_storing(std::uint32_t x, std::uint32_t y, std::uint8_t unit) {
+  auto png = png_with_resolution(encoded(".png"), 300);
+  const std::size_t data = 33 + 8;  // pHYs right after IHDR: length and type, then its 9 data bytes
+  EXPECT_EQ(std::memcmp(&png[33 + 4], "pHYs", 4), 0);
+  for (int k = 0; k < 4; ++k) {
+    png[data + k] = static_cast<std::uint8_t>(x >> (24 - 8 * k));
+    png[data + 4 + k] = static_cast<std::uint8_t>(y >> (24 - 8 * k));
+  }
+  png[data + 8] = unit;
+  const std::uint32_t crc = crc32({&png[33 + 4], 4 + 9});
+  for (int k = 0; k < 4; ++k) png[data + 9 + k] = static_cast<std::uint8_t>(crc >> (24 - 8 * k));
+  EXPECT_FALSE(cv::imdecode(png, cv::IMREAD_UNCHANGED).empty());  // still a valid PNG
+  return png;
+}
+
+TEST(Resolution, StoredResolutionSaysWhatTheFileStoresWhateverItIs) {
+  const StoredResolution one = stored_resolution_from_memory(png_storing(1, 1, 1));
+  EXPECT_EQ(one.kind, StoredResolution::Kind::value);
+  EXPECT_NEAR(one.dpi_x, 0.0254, 1e-12);
+  EXPECT_EQ(one.stored, "1 × 1 px/m");
+  EXPECT_NEAR(resolution_from_memory(png_storing(1, 1, 1))->dpi_x, 0.0254, 1e-12);  // positive: the plain reader passes it on
+  const StoredResolution zero = stored_resolution_from_memory(png_storing(0, 0, 1));
+  EXPECT_EQ(zero.kind, StoredResolution::Kind::value);
+  EXPECT_EQ(zero.dpi_x, 0.0);
+  EXPECT_FALSE(resolution_from_memory(png_storing(0, 0, 1)).has_value());  // the old reader's contract: only positive values
+  const StoredResolution aspect = stored_resolution_from_memory(png_storing(3, 2, 0));
+  EXPECT_EQ(aspect.kind, StoredResolution::Kind::aspect_only);
+  EXPECT_EQ(aspect.stored, "a pixel aspect ratio 3:2 (unit 0)");
+  EXPECT_EQ(stored_resolution_from_memory(encoded(".png")).kind, StoredResolution::Kind::none);
+}
+
+// A density outside the resolutions a scan can have is a wrong scale, not a resolution: refused, naming
+// what the file stores, unless --dpi gives the resolution; an aspect ratio alone is said to be one.
+TEST(Resolution, LoadScanRefusesADensityOutsideTheScanRangeAndSaysWhatTheFileStores) {
+  test::TempDir dir;
+  const auto write = [&](const char* name, const std::vector<std::uint8_t>& bytes) {
+    std::ofstream(dir / name, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    return dir / name;
+  };
+  struct Case {
+    const char* name;
+    std::uint32_t ppm;
+    const char* says;
+  };
+  for (const Case& c : {Case{"one.png", 1, "1 × 1 px/m"}, Case{"zero.png", 0, "0 × 0 px/m"},
+                        Case{"huge.png", 4000000000U, "4000000000 × 4000000000 px/m"}, Case{"low.png", 393, "393 × 393 px/m"}}) {
+    const auto path = write(c.name, png_storing(c.ppm, c.ppm, 1));
+    try {
+      (void)load_scan(path);
+      ADD_FAILURE() << c.name << " was accepted";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.where().file, path.string());
+      EXPECT_NE(std::string(e.what()).find(c.says), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("--dpi"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(load_scan(path, 1200.0).dpi, 1200.0);  // the file's value is not used then
+  }
+  // 394 px/m is the rounding of 10 dpi, the range's lower end: accepted (with the low-resolution warning).
+  const ScanImage edge = load_scan(write("edge.png", png_storing(394, 394, 1)));
+  EXPECT_EQ(edge.dpi, 10.0);
+  EXPECT_EQ(edge.warnings.size(), 1u);
+  const ScanImage aspect = load_scan(write("aspect.png", png_storing(1, 1, 0)));
+  EXPECT_EQ(aspect.dpi_source, "default");
+  ASSERT_EQ(aspect.warnings.size(), 1u);
+  EXPECT_NE(aspect.warnings[0].find("stores only a pixel aspect ratio 1:1"), std::string::npos) << aspect.warnings[0];
 }
 
 }  // namespace

@@ -6,8 +6,8 @@
 #include <numbers>
 #include <opencv2/imgproc.hpp>
 
-#include "stiffpath/vision/render.hpp"
-#include "stiffpath/vision/scan.hpp"
+#include "stiffpath/vision/render/render.hpp"
+#include "stiffpath/vision/scan/scan.hpp"
 
 namespace stiffpath::vision {
 namespace {

@@ -9,8 +9,8 @@
 
 #include "stiffpath/core/csv.hpp"
 #include "stiffpath/core/error.hpp"
-#include "stiffpath/vision/render.hpp"
-#include "stiffpath/vision/scan.hpp"
+#include "stiffpath/vision/render/render.hpp"
+#include "stiffpath/vision/scan/scan.hpp"
 
 namespace stiffpath::vision {
 namespace {

@@ -4,8 +4,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include "stiffpath/core/error.hpp"
-#include "stiffpath/vision/render.hpp"
-#include "stiffpath/vision/scan.hpp"
+#include "stiffpath/vision/render/render.hpp"
+#include "stiffpath/vision/scan/scan.hpp"
 
 namespace stiffpath::vision {
 namespace {

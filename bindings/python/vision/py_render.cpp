@@ -12,9 +12,9 @@
 #include "images.hpp"
 #include "parts.hpp"
 #include "stiffpath/core/error.hpp"
-#include "stiffpath/vision/image_io.hpp"
-#include "stiffpath/vision/plate.hpp"
-#include "stiffpath/vision/render.hpp"
+#include "stiffpath/vision/io/image_io.hpp"
+#include "stiffpath/vision/render/plate.hpp"
+#include "stiffpath/vision/render/render.hpp"
 
 namespace stiffpath::python {
 

@@ -13,8 +13,8 @@
 #include "images.hpp"
 #include "parts.hpp"
 #include "stiffpath/core/error.hpp"
-#include "stiffpath/vision/image_io.hpp"
-#include "stiffpath/vision/scan.hpp"
+#include "stiffpath/vision/io/image_io.hpp"
+#include "stiffpath/vision/scan/scan.hpp"
 
 namespace stiffpath::python {
 

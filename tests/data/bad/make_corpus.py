@@ -3,8 +3,8 @@
 
 Each case puts one bad value at a known place of an otherwise valid file, so the expected location
 (line:column, or the record number of a binary file) and the offending text are known independently
-of the tool's output. usage: make_corpus.py STIFFPATH_CLI   (the CLI writes the valid joint and model
-files that some cases start from).
+of the tool's output. usage: make_corpus.py STIFFPATH_CLI [GROUP...]   (the CLI writes the valid joint and
+model files that some cases start from; GROUPs, default all: tables robots model joints images plates).
 """
 import json
 import os
@@ -192,16 +192,72 @@ def images():
         idat = png_chunk(b"IDAT", zlib.compress(b"\x00" * 64))
         write("image", name, sig + ihdr + idat + png_chunk(b"IEND", b""), "-", str(w))
     write("image", "not_an_image.png", b"this is text, not a PNG\n", "-", "not a readable image")
+    # A resolution outside the 10..100000 dpi of a scan: refused, naming what the file stores (a 1 px/m PNG
+    # was measured as a 237 000 mm line; 0 px/m was reported as "stores no resolution").
+    grey = png_chunk(b"IHDR", struct.pack(">IIBBBBB", 4, 4, 8, 0, 0, 0, 0))
+    pixels = png_chunk(b"IDAT", zlib.compress(b"\x00\xc8\xc8\xc8\xc8" * 4))
+    for name, ppm in (("png_1_px_per_m.png", 1), ("png_0_px_per_m.png", 0), ("png_4e9_px_per_m.png", 4_000_000_000)):
+        phys = png_chunk(b"pHYs", struct.pack(">IIB", ppm, ppm, 1))
+        write("image", name, sig + grey + phys + pixels + png_chunk(b"IEND", b""), "-", f"{ppm} × {ppm} px/m")
+
+
+def plates():
+    """Plate files (render-scan --plate) and marked paths (render-scan --path-csv): each bad field refused at its
+    line and column, exit 2, no image (vertices of 4.3e9 mm and paths of 1e7 mm once ended in bad_alloc, exit 1;
+    unknown keys and labels off the page were accepted)."""
+    expect["plate"] = []
+    base = ('{\n  "page_mm": [100, 80],\n  "marks": [\n'
+            '    {"id": "x", "shape": "line", "length_mm": 40, "at_mm": [10, 20]},\n'
+            '    {"shape": "polyline", "vertices_mm": [[0, 0], [20, 0], [20, 10]], "at_mm": [50, 40]}\n  ],\n'
+            '  "fiducials": [{"at_mm": [8, 70]}],\n'
+            '  "labels": [{"text": "X 5G", "at_mm": [10, 16], "height_mm": 3}]\n}\n')
+    cases = [
+        ("unknown_key.json", base.replace('"page_mm"', '"colour": "red",\n  "page_mm"'), '"colour"', "unknown field"),
+        ("unknown_mark_key.json", base.replace('"length_mm": 40', '"length_mm": 40, "lenght_mm": 40'), '"lenght_mm"', "unknown field"),
+        ("vertex_4e9_mm.json", base.replace("[20, 0], [20, 10]", "[4.3e9, 0], [20, 10]"), "[4.3e9", "4300000000"),
+        ("length_1e300_mm.json", base.replace('"length_mm": 40', '"length_mm": 1e300'), '"length_mm"', "1e+300"),
+        ("label_off_the_page.json", base.replace('"at_mm": [10, 16], "height_mm": 3', '"at_mm": [92, 16], "height_mm": 3'),
+         '{"text"', "is not on the"),
+        ("mark_off_the_page.json", base.replace('"at_mm": [10, 20]', '"at_mm": [70, 20]'), '{"id"', "does not fit on the"),
+        ("fiducial_off_the_page.json", base.replace('"at_mm": [8, 70]', '"at_mm": [98, 70]'), '{"at_mm": [98', "does not fit on the"),
+        ("cross_reaches_the_ring.json", base.replace('"at_mm": [8, 70]}', '"at_mm": [8, 70], "radius_mm": 3, "cross_arm_mm": 2.9}'),
+         '{"at_mm": [8, 70]', "must stop a mark's width short"),
+        ("wiggle_of_1_um.json", base.replace('"length_mm": 40, "at_mm": [10, 20]}',
+                                            '"length_mm": 80, "at_mm": [10, 20], "wiggle_mm": 0.1, "wiggle_wavelength_mm": 0.001}'),
+         '"shape": "line"', "render budget"),
+        ("bed_smaller_than_the_mark.json", base.replace('"labels"', '"scanner": {"bed_mm": [40, 40]},\n  "labels"'), '{"id"',
+         "lies off the scanner's bed"),
+    ]
+    for name, text, needle, value in cases:
+        write("plate", name, text, position(text, needle), value)
+    expect["mark_csv"] = []
+    header = "x_mm,y_mm\n"
+    for name, rows, line, col, value in [
+        ("x_1e7_mm.csv", "0,0\n1e7,0\n10,0\n", 3, 1, "1e7"),
+        ("y_minus_3000_mm.csv", "0,0\n5,0\n5,-3000\n", 4, 3, "-3000"),
+        ("x_nan.csv", "0,0\nnan,0\n", 3, 1, "nan"),
+        ("one_point.csv", "4,4\n4,4\n", None, None, "at least two distinct points"),
+    ]:
+        write("mark_csv", name, header + rows, f"{line}:{col}" if line else "-", value)
 
 
 def main():
     cli = sys.argv[1]
-    tables()
-    robots()
+    only = set(sys.argv[2:])  # groups to write (default: all): tables robots model joints images plates
+    wanted = lambda group: not only or group in only
+    if wanted("tables"):
+        tables()
+    if wanted("robots"):
+        robots()
     with tempfile.TemporaryDirectory() as tmp:
-        model(cli, tmp)
-        joints(cli, tmp)
-    images()
+        if wanted("model"):
+            model(cli, tmp)
+        if wanted("joints"):
+            joints(cli, tmp)
+    if wanted("images"):
+        images()
+    if wanted("plates"):
+        plates()
     for reader, lines in expect.items():
         with open(os.path.join(here, reader, "expect.txt"), "w") as f:
             f.write("# file<TAB>where (line:column, record N, header or - for the file)<TAB>text the message must name\n")
