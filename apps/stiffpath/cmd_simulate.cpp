@@ -1,5 +1,7 @@
 // `stiffpath simulate`: a joint trajectory from `stiffpath run` through the digital twin, measured like the thesis's marks.
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <fmt/format.h>
@@ -17,6 +19,7 @@
 #include "stiffpath/job/joint_reader.hpp"
 #include "stiffpath/job/joint_writer.hpp"
 #include "stiffpath/core/atomic_file.hpp"
+#include "stiffpath/evaluation/path_metrics.hpp"
 #include "stiffpath/simulation/cg_lever.hpp"
 #include "stiffpath/simulation/run_metrics.hpp"
 #include "stiffpath/simulation/twin_models.hpp"
@@ -24,6 +27,8 @@
 namespace stiffpath::cli {
 
 namespace {
+using simulation::Vec2;
+
 struct SimulateArgs {
   std::string joints;
   std::string robot;  // default: the binary file's robot (a preset), else oc-gu
@@ -32,9 +37,128 @@ struct SimulateArgs {
   TwinFlags twin;
   simulation::SimulationOptions sim;
   std::string marks_csv;
+  double corner_trim_mm = 1.0;
   bool json = false, quiet = false;
   bool force_robot = false;
 };
+
+// The physical line of a joint CSV that holds record `record` (0-based): the reader skips blank and
+// '#' lines, and the first line it keeps is the header. 0 when the file is shorter.
+int csv_line_of(const std::string& path, std::size_t record) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  std::size_t kept = 0;
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (line.find_first_not_of(" \t\r") == std::string::npos || line.front() == '#') continue;
+    if (kept++ == record + 1) return number;
+  }
+  return 0;
+}
+
+// Where record `record` (0-based) of a joint file is, for an error message.
+SourceLocation record_location(const std::string& path, const job::JointReader& reader, std::size_t record) {
+  if (reader.binary()) return SourceLocation{path};
+  return SourceLocation{path, csv_line_of(path, record), 0};
+}
+
+std::string record_name(const job::JointReader& reader, std::size_t record) {
+  if (!reader.binary()) return fmt::format("record {}", record + 1);
+  const bool v1 = reader.version() == 1;
+  const std::uint64_t header = v1 ? job::kBinaryV1HeaderBytes : job::kBinaryHeaderBytes;
+  const std::uint64_t bytes = v1 ? job::kBinaryV1RecordBytes : job::kBinaryRecordBytes;
+  return fmt::format("record {} (byte {})", record + 1, header + record * bytes);
+}
+
+// The first and last record's times and the last record's index, read from the file's ends without
+// reading it through (binary: the header's count; CSV: the first and the last data line). nullopt when
+// they cannot be read so (the simulation still checks every record as it comes).
+struct JobSpan {
+  double first_s = 0.0, last_s = 0.0;
+  std::size_t last_record = 0;
+};
+std::optional<JobSpan> job_span(const std::string& path, const job::JointReader& reader) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  JobSpan span;
+  if (reader.binary()) {
+    const bool v1 = reader.version() == 1;
+    const std::uint64_t header = v1 ? job::kBinaryV1HeaderBytes : job::kBinaryHeaderBytes;
+    const std::uint64_t bytes = v1 ? job::kBinaryV1RecordBytes : job::kBinaryRecordBytes;
+    std::uint64_t count = 0;
+    in.seekg(24);
+    in.read(reinterpret_cast<char*>(&count), sizeof count);
+    if (!in || count == 0) return std::nullopt;
+    const auto time_at = [&](std::uint64_t k) -> std::optional<double> {
+      double t = 0.0;
+      in.seekg(static_cast<std::streamoff>(header + k * bytes));
+      in.read(reinterpret_cast<char*>(&t), sizeof t);
+      return in && std::isfinite(t) ? std::optional<double>(t) : std::nullopt;
+    };
+    const auto first = time_at(0), last = time_at(count - 1);
+    if (!first || !last) return std::nullopt;
+    span = {*first, *last, static_cast<std::size_t>(count - 1)};
+    return span;
+  }
+  const auto time_of = [](const std::string& line) -> std::optional<double> {
+    char* end = nullptr;
+    const double t = std::strtod(line.c_str(), &end);
+    return end != line.c_str() && std::isfinite(t) ? std::optional<double>(t) : std::nullopt;
+  };
+  std::string line;
+  std::optional<double> first;
+  bool header = false;
+  while (!first && std::getline(in, line)) {
+    if (line.find_first_not_of(" \t\r") == std::string::npos || line.front() == '#') continue;
+    if (!header) {
+      header = true;
+      continue;
+    }
+    first = time_of(line);
+    if (!first) return std::nullopt;
+  }
+  if (!first) return std::nullopt;
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec) return std::nullopt;
+  const std::uint64_t tail = std::min<std::uint64_t>(size, 4096);
+  in.clear();
+  in.seekg(static_cast<std::streamoff>(size - tail));
+  std::string text(tail, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(tail));
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  while (!text.empty() && (text.back() == '\n' || text.back() == '\r' || text.back() == ' ')) text.pop_back();
+  const auto last = time_of(text.substr(text.rfind('\n') == std::string::npos ? 0 : text.rfind('\n') + 1));
+  if (!last) return std::nullopt;
+  span.first_s = *first;
+  span.last_s = *last;
+  span.last_record = 0;  // counted only when it is named (an error)
+  return span;
+}
+
+// The work budget, checked before the first step: the file's span at the step rate, with the settling.
+void check_budget(const std::string& path, const job::JointReader& reader, const simulation::SimulationOptions& sim) {
+  const auto span = job_span(path, reader);
+  if (!span) return;
+  const double rate = sim.plant.step_rate_hz;
+  const double steps = (span->last_s - span->first_s) * rate + std::ceil(sim.settle_s * rate);
+  if (!(steps > static_cast<double>(sim.max_steps))) return;
+  std::size_t last = span->last_record;
+  if (!reader.binary()) {  // count the records only now
+    std::ifstream in(path, std::ios::binary);
+    std::string line;
+    std::size_t kept = 0;
+    while (std::getline(in, line)) {
+      if (line.find_first_not_of(" \t\r") == std::string::npos || line.front() == '#') continue;
+      ++kept;
+    }
+    last = kept >= 2 ? kept - 2 : 0;
+  }
+  throw Error(record_location(path, reader, last),
+              fmt::format("{} (the last, t = {:g} s): the job is {:.1f} s of motion, about {:.4g} integration steps at {:g} Hz, "
+                          "more than the simulation's work budget of {} steps ({:.4g} s of motion; raise it with --max-steps)",
+                          record_name(reader, last), span->last_s, span->last_s - span->first_s, steps, rate, sim.max_steps,
+                          static_cast<double>(sim.max_steps) / rate));
+}
 
 // Records in a joint file, for the progress bar: from the size for the binary format (versions 1 and 2),
 // lines for CSV.
@@ -60,13 +184,31 @@ double record_count(const std::string& path, const job::JointReader& reader) {
 class MarksFile {
  public:
   explicit MarksFile(const std::string& path) : file_(path) { file_.stream() << "x_mm,y_mm\n"; }
-  void add(const simulation::Stroke& stroke) {
-    for (const auto& p : stroke.marked) file_.stream() << fmt::format("{:.6f},{:.6f}\n", p.x() * 1e3, -p.y() * 1e3);
-  }
+  void add(const Vec2& p) { file_.stream() << fmt::format("{:.6f},{:.6f}\n", p.x() * 1e3, -p.y() * 1e3); }
   void commit() { file_.commit(); }
 
  private:
   core::AtomicFile file_;
+};
+
+// What `simulate` does with each stroke while it is marked: the meter measures it, the marks file (if
+// any) writes its points, and the points are counted. Nothing of a stroke is kept.
+class StrokeTap final : public simulation::StrokeObserver {
+ public:
+  StrokeTap(simulation::RunMeter& meter, std::optional<MarksFile>& marks) : meter_(meter), marks_(marks) {}
+  void begin_stroke(std::size_t index, double t_s) override { meter_.begin_stroke(index, t_s); }
+  void command(const Vec2& target_m) override { meter_.command(target_m); }
+  void mark(const Vec2& tip_m) override {
+    meter_.mark(tip_m);
+    ++marked_points;
+    if (marks_) marks_->add(tip_m);
+  }
+  void end_stroke(double t_s) override { meter_.end_stroke(t_s); }
+  std::size_t marked_points = 0;
+
+ private:
+  simulation::RunMeter& meter_;
+  std::optional<MarksFile>& marks_;
 };
 
 nlohmann::json mm(double value_m, bool valid = true) { return valid ? nlohmann::json(tidy(value_m * 1e3)) : nlohmann::json(nullptr); }
@@ -93,23 +235,29 @@ void simulate(const SimulateArgs& a) {
   apply_twin_flags(a.twin, sim, truth_options);
   if (!a.twin.no_cg_lever) sim.cg_lever = simulation::make_cg_lever(robot);
   const auto truth = simulation::make_true_compliance(robot, truth_options);
-  simulation::RunMeter meter(a.sides);
+  check_budget(a.joints, reader, sim);
+  evaluation::PathMetricsOptions metrics;
+  metrics.corner_trim_m = a.corner_trim_mm * 1e-3;
+  simulation::RunMeter meter(a.sides, 100000, metrics);
   std::optional<MarksFile> marks;
   if (!a.marks_csv.empty()) marks.emplace(a.marks_csv);
-  std::size_t marked_points = 0;
+  StrokeTap tap(meter, marks);
   Progress progress("simulate", a.quiet);
   const double total = progress.enabled() ? record_count(a.joints, reader) : 1.0;
   double done = 0;
-  const simulation::SimulationResult run = simulation::simulate(
-      [&] {
-        if (++done == 1 || static_cast<long>(done) % 2048 == 0) progress.update(done / total);
-        return reader.next();
-      },
-      robot, truth, sim, [&](const simulation::Stroke& stroke) {
-        meter.add(stroke);
-        marked_points += stroke.marked.size();
-        if (marks) marks->add(stroke);
-      });
+  simulation::SimulationResult run;
+  try {
+    run = simulation::simulate(
+        [&] {
+          if (++done == 1 || static_cast<long>(done) % 2048 == 0) progress.update(done / total);
+          return reader.next();
+        },
+        robot, truth, sim, static_cast<simulation::StrokeObserver&>(tap));
+  } catch (const simulation::RecordRefused& e) {
+    throw Error(record_location(a.joints, reader, e.record()),
+                fmt::format("{}: RANGE: {}", record_name(reader, e.record()), e.message()));
+  }
+  const std::size_t marked_points = tap.marked_points;
   progress.finish();
   const simulation::RunMetrics m = meter.totals(run);
   if (marks) marks->commit();
@@ -176,6 +324,13 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_option("--seed", a->truth.seed, "Seed of the perturbation")->capture_default_str();
   add_twin_flags(cmd, a->twin, a->sim, a->truth);
   cmd->add_option("--marks-csv", a->marks_csv, "Also write the mark (x_mm, y_mm, y down) for `render-scan --path-csv`");
+  cmd->add_option("--corner-trim-mm", a->corner_trim_mm,
+                  "Points this close to a corner are left out of the sides' lines and splines (mm), as for scan")
+      ->check(within(0.0, 1000.0, "mm"))->capture_default_str();
+  cmd->add_option("--max-steps", a->sim.max_steps,
+                  "Work budget: the most integration steps the job may take (at the default 20 kHz, 3e8 is 4 h 10 min "
+                  "of motion); a longer job is refused before it starts")
+      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{100'000'000'000}))->capture_default_str();
   cmd->add_flag("--force-robot", a->force_robot, "Simulate a joint file written for another robot anyway");
   cmd->add_flag("--json", a->json, "Print the metrics as JSON");
   cmd->add_flag("--quiet", a->quiet, "No progress bar (it is shown only on a terminal anyway)");

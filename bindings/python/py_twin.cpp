@@ -86,14 +86,17 @@ PySimulation simulate(const kinematics::Robot& robot, const py::handle& joints_i
     return to_command(rows[i++]);
   };
   std::vector<Vec2> marked, commanded;
+  std::vector<std::size_t> first_mark;
   out.result = simulation::simulate(source, robot, plant_truth, options, [&](const simulation::Stroke& stroke) {
     meter.add(stroke);
     out.stroke_starts.push_back(marked.size());
+    for (const auto k : stroke.first_mark) first_mark.push_back(marked.size() + k);
     marked.insert(marked.end(), stroke.marked.begin(), stroke.marked.end());
     commanded.insert(commanded.end(), stroke.commanded.begin(), stroke.commanded.end());
   });
   out.result.marked = std::move(marked);
   out.result.commanded = std::move(commanded);
+  out.result.first_mark = std::move(first_mark);
   out.stroke_metrics = meter.strokes();
   try {
     out.metrics = meter.totals(out.result);

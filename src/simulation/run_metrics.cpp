@@ -1,109 +1,76 @@
-// The marked path's metrics from the evaluation module: length, deviation area, max deviation, AT_p, CR, CO.
+// The marked path's metrics from the evaluation module, stroke by stroke: length, area, deviation, AT_p, CR, CO.
 #include "stiffpath/simulation/run_metrics.hpp"
 
 #include <algorithm>
-#include <span>
 #include <fmt/format.h>
 
+#include "run_metrics_stroke.hpp"
 #include "stiffpath/core/error.hpp"
-#include "stiffpath/evaluation/cornering.hpp"
-#include "stiffpath/evaluation/iso9283.hpp"
-#include "stiffpath/evaluation/path_metrics.hpp"
 
 namespace stiffpath::simulation {
 
 namespace {
 
-// A command whose ends are closer than this is a closed path (m).
-constexpr double kClosedGap_m = 1e-6;
-
-// The command's own largest distance from its fitted sides above which its line metrics are refused
-// (m): a contour that is not straight sides (an arc, a rounded rectangle taken as one side) would
-// report its own shape as the robot's deviation.
-constexpr double kStraightCommand_m = 50e-6;
-
-// Fewer points than this in the mark (or two in the command) leave nothing to measure.
-std::string too_short(std::size_t marked, std::size_t commanded) {
-  if (marked >= 4 && commanded >= 2) return {};
-  return fmt::format("the laser marked {} points ({} commanded); nothing to measure", marked, commanded);
-}
-
-// One stroke's line metrics, AT_p and cornering. The line metrics are refused (an error message) rather
-// than thrown when the stroke is not `sides` straight sides; `strict` throws instead (measure_run).
-StrokeMetrics measure_stroke(std::span<const Vec2> marked, std::span<const Vec2> commanded, int sides, bool strict) {
-  StrokeMetrics s;
-  s.marked_points = marked.size();
-  s.refusal = too_short(marked.size(), commanded.size());
-  if (!s.refusal.empty()) {
-    if (strict) throw Error("simulation: " + s.refusal);
-    return s;
+// Hands a whole stroke's commands and marks to `meter` in the order simulate() would have.
+void replay(detail::StrokeMeter& meter, const std::vector<Vec2>& commanded, const std::vector<Vec2>& marked,
+            const std::vector<std::size_t>& first_mark) {
+  if (first_mark.size() != commanded.size()) {
+    throw Error(fmt::format("simulation: the mark's {} interval starts do not match the {} commanded points (a result "
+                            "that kept no mark, or strokes joined without their Stroke::first_mark)",
+                            first_mark.size(), commanded.size()));
   }
-  RunMetrics& m = s.metrics;
-  try {
-    for (const auto& corner : evaluation::iso9283_cornering(commanded, marked)) {
-      ++m.corners;
-      m.cornering_round_off_m = std::max(m.cornering_round_off_m, corner.round_off_m);
-      m.cornering_overshoot_m = std::max(m.cornering_overshoot_m, corner.overshoot_m);
-    }
-  } catch (const Error&) {
-    if (strict) throw;
+  for (std::size_t k = 0; k < commanded.size(); ++k) {
+    meter.command(commanded[k]);
+    const std::size_t to = k + 1 < commanded.size() ? first_mark[k + 1] : marked.size();
+    for (std::size_t i = first_mark[k]; i < to && i < marked.size(); ++i) meter.mark(marked[i]);
   }
-  // sides 0: as many straight sides as the command has sharp corners plus one, closed when the
-  // command ends where it started (a triangle: two interior corners, three sides).
-  const bool closes = (commanded.back() - commanded.front()).norm() < kClosedGap_m;
-  const int n_sides = sides > 0 ? sides : static_cast<int>(m.corners) + 1;
-  evaluation::PathMetricsOptions options;
-  options.closure = (sides > 0 ? sides >= 3 : closes && n_sides >= 3) ? evaluation::Closure::closed
-                                                                       : evaluation::Closure::open;
-  try {
-    const auto mark = evaluation::measure_path(marked, n_sides, options);
-    const auto command = evaluation::measure_path(commanded, n_sides, options);
-    if (command.max_deviation_m > kStraightCommand_m) {
-      throw Error(fmt::format("the command itself lies up to {:.3f} mm from its {} fitted side{} (more than {:g} mm): "
-                              "its shape would be read as deviation",
-                              command.max_deviation_m * 1e3, n_sides, n_sides == 1 ? "" : "s", kStraightCommand_m * 1e3));
-    }
-    m.length_m = mark.length_m;
-    m.commanded_length_m = command.length_m;
-    m.length_error_m = mark.length_m - command.length_m;
-    m.deviation_area_m2 = mark.deviation_area_m2;
-    m.max_deviation_m = mark.max_deviation_m;
-    m.line_strokes = 1;
-    s.sides = n_sides;
-  } catch (const Error& e) {
-    if (strict) throw;
-    s.refusal = fmt::format("not {} straight side{}: {}", n_sides, n_sides == 1 ? "" : "s", e.what());
-  }
-  const std::vector<Vec2> mark(marked.begin(), marked.end());
-  try {
-    m.path_accuracy_m = evaluation::iso9283_path_accuracy(commanded, {mark}).accuracy_m;
-    s.path_accuracy = true;
-  } catch (const Error&) {
-    if (strict) throw;
-  }
-  m.strokes = 1;
-  return s;
 }
 
 }  // namespace
 
-RunMetrics measure_run(const SimulationResult& run, int sides) {
-  RunMetrics m = measure_stroke(run.marked, run.commanded, sides, true).metrics;
+RunMetrics measure_run(const SimulationResult& run, int sides, const evaluation::PathMetricsOptions& metrics) {
+  detail::StrokeMeter meter(sides, metrics);
+  replay(meter, run.commanded, run.marked, run.first_mark);
+  RunMetrics m = meter.finish(true).metrics;
   m.residual_vibration_m = run.residual_vibration_m;
   m.peak_deflection_m = run.peak_deflection_m;
   return m;
 }
 
-RunMeter::RunMeter(int sides, std::size_t keep_strokes) : sides_(sides), keep_(keep_strokes) {}
+RunMeter::RunMeter(int sides, std::size_t keep_strokes, const evaluation::PathMetricsOptions& metrics)
+    : sides_(sides), keep_(keep_strokes), metrics_(metrics) {}
+
+RunMeter::~RunMeter() = default;
+
+void RunMeter::begin_stroke(std::size_t index, double t_s) {
+  stroke_ = std::make_unique<detail::StrokeMeter>(sides_, metrics_);
+  index_ = index;
+  start_s_ = t_s;
+}
+
+void RunMeter::command(const Vec2& target_m) { stroke_->command(target_m); }
+
+void RunMeter::mark(const Vec2& tip_m) { stroke_->mark(tip_m); }
+
+void RunMeter::end_stroke(double t_s) {
+  StrokeMetrics s = stroke_->finish(false);
+  stroke_.reset();
+  s.index = index_;
+  s.start_s = start_s_;
+  s.end_s = t_s;
+  fold(std::move(s));
+}
 
 void RunMeter::add(const Stroke& stroke) {
-  StrokeMetrics s = measure_stroke(stroke.marked, stroke.commanded, sides_, false);
-  s.index = stroke.index;
-  s.start_s = stroke.start_s;
-  s.end_s = stroke.end_s;
+  begin_stroke(stroke.index, stroke.start_s);
+  replay(*stroke_, stroke.commanded, stroke.marked, stroke.first_mark);
+  end_stroke(stroke.end_s);
+}
+
+void RunMeter::fold(StrokeMetrics s) {
   ++count_;
   if (s.metrics.strokes == 0 && first_refusal_.empty()) {
-    first_refusal_ = fmt::format("stroke {} ({:.4f} s to {:.4f} s): {}", stroke.index + 1, s.start_s, s.end_s, s.refusal);
+    first_refusal_ = fmt::format("stroke {} ({:.4f} s to {:.4f} s): {}", s.index + 1, s.start_s, s.end_s, s.refusal);
   }
   const RunMetrics& m = s.metrics;
   RunMetrics& t = totals_;

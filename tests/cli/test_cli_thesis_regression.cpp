@@ -124,7 +124,10 @@ TEST(CliThesisRegression, TheExperimentMatrixIsUnchanged) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   // The first two columns were renamed (mechanism, build → robot, rows); the values are the same. Two
   // last columns are new: variant (the compensation: "thesis" when compensated, empty without) and source
-  // ("simulated" on every row).
+  // ("simulated" on every row). The mark metrics (length … CO) were re-recorded when they were made the
+  // scan's, along the mark (arc-length samples, each stroke cut into sides at its command's corners,
+  // AT_p per side): the twin's own columns (duration, residual vibration, peak deflection) are the
+  // original reference's, unchanged.
   const auto read = [](const std::filesystem::path& path) {
     std::ifstream file(path);
     std::vector<std::string> rows;
@@ -204,7 +207,9 @@ TEST(CliThesisRegression, TheTwinMeasuresTheSameMarks) {
     const CliResult r = run_cli(args, dir.path());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto now = r.json(), before = read_json(kReference / file);
-    // Every metric of the reference is unchanged; per-stroke metrics were added since.
+    // Every metric of the reference is unchanged (the mark metrics as re-recorded when they were made
+    // the scan's, along the mark; duration, peaks and marked points as first recorded); per-stroke
+    // metrics were added since.
     for (const auto& [key, value] : before.items()) {
       if (key != "mechanism") {
         EXPECT_EQ(now[key], value) << file << ' ' << key;

@@ -3,6 +3,8 @@
 
 #include <Eigen/LU>
 #include <cmath>
+#include <fmt/format.h>
+#include <numbers>
 #include <sstream>
 
 #include "stiffpath/core/error.hpp"
@@ -15,10 +17,10 @@ namespace stiffpath::simulation {
 namespace {
 
 // The uncompensated joint stream of a G-code program on the thesis robot at 2 g (IK of each 2 kHz sample).
-std::vector<compensation::JointCommand> joints_of(const std::string& gcode) {
+std::vector<compensation::JointCommand> joints_of(const std::string& gcode, double acceleration_g = 2) {
   const auto five_bar = kinematics::load_robot("oc-gu").five_bar();
   motion::PlanOptions plan;
-  plan.limits.max_acceleration_m_s2 = 2 * 9.80665;
+  plan.limits.max_acceleration_m_s2 = acceleration_g * 9.80665;
   plan.limits.max_jerk_m_s3 = motion::default_jerk_m_s3(plan.limits.max_acceleration_m_s2);
   std::istringstream program(gcode);
   motion::TrajectoryStream stream(program, "test", plan);
@@ -182,6 +184,119 @@ TEST(Strokes, AContourThatIsNotStraightSidesGetsNoLineMetrics) {
   EXPECT_TRUE(meter.strokes()[1].refusal.empty()) << meter.strokes()[1].refusal;
   EXPECT_EQ(total.line_strokes, 1U);
   EXPECT_NEAR(total.commanded_length_m, 0.040, 5e-6);  // only the line's length is summed
+}
+
+// A hatch of `lines` lines of 8 mm along x, 40 µm apart, joined by 40 µm steps in y (G61: exact stops).
+std::string hatch(int lines, std::vector<Vec2>& starts, std::vector<Vec2>& ends) {
+  std::string g = "G21 G90 G61\nG0 X190 Y-10\nM3 S1000\n";
+  double x = 190.0;
+  for (int k = 0; k < lines; ++k) {
+    const double y = -10.0 + 0.04 * k;
+    if (k > 0) g += fmt::format("G1 X{:.3f} Y{:.3f} F120000\n", x, y);
+    starts.emplace_back(x * 1e-3, y * 1e-3);
+    x = x == 190.0 ? 198.0 : 190.0;
+    g += fmt::format("G1 X{:.3f} Y{:.3f} F120000\n", x, y);
+    ends.emplace_back(x * 1e-3, y * 1e-3);
+  }
+  return g + "M5\nM2\n";
+}
+
+// The oracle of a long stroke: a hatch marked as one stroke (its turns marked too) measures, line by
+// line, as the very same motion marked with the laser off on the turns, each line a stroke of its own
+// that is measured alone (one side, no corners, no chain). The one stroke is cut at the command's
+// corners; each line's own stroke runs from the sample nearest its start to the one nearest its end.
+TEST(Strokes, AHatchMarkedAsOneStrokeMeasuresAsItsLinesMarkedOneByOne) {
+  const auto robot = kinematics::load_robot("oc-gu");
+  const auto truth = make_true_compliance(robot);
+  std::vector<Vec2> starts, ends;
+  const int lines = 12;
+  const auto one = joints_of(hatch(lines, starts, ends), 5);
+  auto apart = one;
+  std::optional<std::size_t> first_on;
+  std::size_t last_on = 0;
+  for (std::size_t i = 0; i < one.size(); ++i) {
+    if (one[i].laser_on && !first_on) first_on = i;
+    if (one[i].laser_on) last_on = i;
+  }
+  ASSERT_TRUE(first_on.has_value());
+  const auto nearest = [&](const Vec2& p) {
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < one.size(); ++i) best = (one[i].target_m - p).norm() < (one[best].target_m - p).norm() ? i : best;
+    return best;
+  };
+  for (auto& c : apart) c.laser_on = false;
+  for (int k = 0; k < lines; ++k) {
+    const std::size_t from = k == 0 ? *first_on : nearest(starts[k]);
+    const std::size_t to = k == lines - 1 ? last_on + 1 : nearest(ends[k]);
+    for (std::size_t i = from; i < to; ++i) apart[i].laser_on = true;
+  }
+  RunMeter whole(0), each(0);
+  const auto run = simulate(source_of(one), robot, truth, {}, static_cast<StrokeObserver&>(whole));
+  (void)simulate(source_of(apart), robot, truth, {}, static_cast<StrokeObserver&>(each));
+  ASSERT_EQ(whole.stroke_count(), 1u);
+  ASSERT_EQ(each.stroke_count(), static_cast<std::size_t>(lines));
+  const StrokeMetrics& s = whole.strokes()[0];
+  ASSERT_TRUE(s.refusal.empty()) << s.refusal;
+  EXPECT_EQ(s.sides, lines);
+  EXPECT_EQ(s.metrics.corners, static_cast<std::size_t>(lines - 1));  // the turns: reversals, no line corners
+  for (const auto& line : each.strokes()) {
+    ASSERT_TRUE(line.refusal.empty()) << line.refusal;
+    EXPECT_EQ(line.sides, 1);
+    EXPECT_EQ(line.metrics.corners, 0u);
+  }
+  const RunMetrics a = whole.totals(run), b = each.totals(run);
+  EXPECT_NEAR(a.length_m, b.length_m, 1e-12 * b.length_m);
+  EXPECT_NEAR(a.commanded_length_m, b.commanded_length_m, 1e-12 * b.commanded_length_m);
+  EXPECT_NEAR(a.deviation_area_m2, b.deviation_area_m2, 1e-12 * b.deviation_area_m2);
+  EXPECT_EQ(a.max_deviation_m, b.max_deviation_m);
+  EXPECT_EQ(a.path_accuracy_m, b.path_accuracy_m);
+  // and those are the hatch's: 8 mm lines, ending where their exact stops put them.
+  EXPECT_NEAR(b.commanded_length_m, lines * 0.008, lines * 1e-6);
+  EXPECT_GT(a.max_deviation_m, 1e-6);
+  EXPECT_LT(a.cornering_round_off_m, 0.1e-3);  // every turn reached: CR is µm, not the metres of a runaway corner
+}
+
+// Joint commands the robot cannot take are refused at the record, with the value and the limit.
+TEST(Strokes, JointCommandsBeyondTheRobotAreRefusedAtTheirRecord) {
+  const auto robot = kinematics::load_robot("oc-gu");
+  const auto truth = make_true_compliance(robot);
+  auto joints = joints_of(kTwoLines);
+  auto beyond = joints;
+  beyond[40].q_rad[0] = robot.joints[0].max_rad + 0.1;
+  try {
+    (void)simulate(source_of(beyond), robot, truth);
+    FAIL() << "a joint beyond its limit was simulated";
+  } catch (const RecordRefused& e) {
+    EXPECT_EQ(e.record(), 40u);
+    const double deg = (robot.joints[0].max_rad + 0.1) * 180 / std::numbers::pi;
+    EXPECT_NE(e.message().find(fmt::format("{:.3f} deg", deg)), std::string::npos) << e.message();
+    EXPECT_NE(e.message().find(fmt::format("upper limit of {:.3f} deg", robot.joints[0].max_rad * 180 / std::numbers::pi)),
+              std::string::npos)
+        << e.message();
+  }
+  // The thesis robot's tip is l·(e^{iθ1} + e^{iθ2}): (30°, −30°) and (−30°, 30°), both within the limits,
+  // put it on the same point, the second in the other working mode (the arms folded through each other).
+  const double a = 30 * std::numbers::pi / 180;
+  ASSERT_LT((robot.five_bar().inverse(robot.five_bar().forward(Vec2{a, -a})) - Vec2{a, -a}).norm(), 1e-9);
+  auto swapped = joints;
+  swapped[25].q_rad = {-a, a};
+  try {
+    (void)simulate(source_of(swapped), robot, truth);
+    FAIL() << "a command in the other working mode was simulated";
+  } catch (const RecordRefused& e) {
+    EXPECT_EQ(e.record(), 25u);
+    EXPECT_NE(e.message().find("another working mode"), std::string::npos) << e.message();
+  }
+  // The work budget: refused at the record that would take the job beyond it, before stepping it.
+  SimulationOptions small;
+  small.max_steps = 5000;
+  try {
+    (void)simulate(source_of(joints), robot, truth, small);
+    FAIL() << "the work budget was not enforced";
+  } catch (const RecordRefused& e) {
+    EXPECT_NE(e.message().find("work budget of 5000 integration steps"), std::string::npos) << e.message();
+    EXPECT_LE(e.record() * 10 + 2000, 5000u + 10);  // 10 steps per 0.5 ms record, the settling's 2000 counted first
+  }
 }
 
 TEST(Strokes, AJobThatNeverFiresTheLaserHasNothingToMeasure) {

@@ -26,7 +26,19 @@ struct PathMetricsOptions {
   //! point is below closed_gap_fraction × path length / sides, for three or more sides).
   Closure closure = Closure::automatic;
   double closed_gap_fraction = 0.05;
+  //! Every side is measured along its mark: the polyline through its points is resampled at equal
+  //! arc-length steps of at most this (m) and the line, spline, area and deviations are taken on those
+  //! samples, so each part of the mark weighs by its length, whatever the spacing of the points given
+  //! (a simulated mark sampled in time, a scan's cross-sections). 20 µm: finer than a 1200 dpi pixel.
+  double resample_step_m = 20e-6;
+  //! Points within this of the polyline through the others are dropped first (m); free ends and
+  //! corner distances are taken on what is kept, so they are exact within twice this.
+  double trace_tolerance_m = 1e-9;
 };
+
+//! Consecutive sides whose fitted lines meet at an interior angle below this (rad, 10°) are joined by a
+//! reversal (a hatch's turn): their lines' intersection is no corner, and both ends there are free ends.
+inline constexpr double kReversalAngle_rad = 0.17453292519943295;
 
 //! One straight side of a path, measured in its own fitted line's frame (t along, u across).
 struct SideMetrics {
@@ -40,6 +52,9 @@ struct SideMetrics {
   double deviation_area_m2 = 0;  //!< ∫|u(t)| dt between spline and line over [t_from, t_to] (§4.7)
   double max_deviation_m = 0;    //!< max |u(t)| of the spline over the same range
   double straightness_m = 0;     //!< peak to valley, max u − min u of the spline
+  //! Largest |u| of the samples themselves, unsmoothed: how far the side's points stray from its line
+  //! (a side that is no straight line, such as an arc, whose u(t) has two values, shows here).
+  double max_offset_m = 0;
   double t_from_m = 0, t_to_m = 0;  //!< along-line range of the metrics (t = 0 at the fit's centroid)
   std::size_t point_count = 0;      //!< points used (after corner trimming)
 };
@@ -57,7 +72,8 @@ struct CornerReport {
 //! Metrics of a whole path: its sides in order, the corners between them and the totals.
 struct PathMetrics {
   std::vector<SideMetrics> sides;
-  std::vector<CornerReport> corners;  //!< N − 1 for an open path, N for a closed one (corner k ends side k)
+  //! N − 1 for an open path, N for a closed one (corner k ends side k), less one per reversal
+  std::vector<CornerReport> corners;
   bool closed = false;
   double length_m = 0;           //!< sum of the sides' lengths
   double deviation_area_m2 = 0;  //!< sum of the sides' areas (the thesis's triangle total, §4.7)
@@ -66,9 +82,11 @@ struct PathMetrics {
 };
 
 //! Measures a path already separated into sides (each side's points ordered from its start to its
-//! end). For a closed path the last side ends at the first side's start. Corners are the
-//! intersections of consecutive sides' TLS lines, refined twice after trimming the points near
-//! them. Throws stiffpath::Error when a side has fewer than two usable points, consecutive sides are
+//! end), along the mark (PathMetricsOptions::resample_step_m). For a closed path the last side ends at
+//! the first side's start. Corners are the intersections of consecutive sides' TLS lines, refined
+//! twice after trimming the points near them; sides meeting at less than kReversalAngle_rad have free
+//! ends there instead. The work is SideChain's (the same numbers side by side in bounded memory).
+//! Throws stiffpath::Error when a side has fewer than two usable points, consecutive sides are
 //! parallel, or a side comes out with non-positive length.
 PathMetrics measure_sides(const std::vector<std::vector<Point2>>& sides, bool closed, const PathMetricsOptions& options = {});
 
