@@ -78,7 +78,7 @@ Campaign load_campaign(const std::string& path) {
   while (csv.next()) {
     CampaignReading r;
     r.line = csv.line();
-    r.point = std::string(csv.text(c_point));
+    r.point = std::string(csv.name(c_point));
     if (r.point.empty()) csv.fail(c_point, "value is missing (empty cell)");
     r.x_m = units::mm_to_m(csv.number(c_x));
     r.y_m = units::mm_to_m(csv.number(c_y));

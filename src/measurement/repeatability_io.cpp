@@ -36,8 +36,8 @@ std::vector<PositioningTrial> read(core::CsvReader& csv) {
   while (csv.next()) {
     PositioningTrial t;
     t.line = csv.line();
-    if (c_mech) t.mechanism = std::string(csv.text(*c_mech));
-    t.point = std::string(csv.text(c_point));
+    if (c_mech) t.mechanism = std::string(csv.name(*c_mech));
+    t.point = std::string(csv.name(c_point));
     if (t.point.empty()) csv.fail(c_point, "value is missing (empty cell)");
     t.x_m = units::mm_to_m(csv.number(c_x));
     t.y_m = units::mm_to_m(csv.number(c_y));
