@@ -38,7 +38,10 @@ void run(const SimulateOptions& o) {
   if (o.truth.empty() && robot.compliance.table.empty()) {
     throw Error(fmt::format("robot '{}' names no displacement table: give the truth with --truth", robot.name));
   }
-  auto table = measurement::load_displacement_table(o.truth.empty() ? robot.compliance.table : table_ref(o.truth));
+  const core::DataRef truth = o.truth.empty() ? robot.compliance.table : table_ref(o.truth);
+  core::check_distinct_files(robot_inputs(robot, false, {{"--truth", truth.builtin ? "" : truth.path}}),
+                             {{"-o", o.output}, {"--truth-output", o.truth_output}});
+  auto table = measurement::load_displacement_table(truth);
   if (table.mechanisms().size() > 1) table = table.filter(robot.compliance.rows);
   if (table.rows.empty()) {
     throw Error(SourceLocation{table.source},
@@ -98,8 +101,8 @@ void add_campaign_command(CLI::App& app) {
   sim->add_option("--seed", opts->seed, "Random seed")->capture_default_str();
   sim->add_option("--g-height-mm", opts->g_height_mm, "z of G at step 0 in the CMM frame (mm)")->capture_default_str()
       ->check(within(-10000.0, 10000.0, "mm"));
-  sim->add_option("-o,--output", opts->output, "Campaign CSV to write")->required();
-  sim->add_option("--truth-output", opts->truth_output, "Also write the truth as a displacement table");
+  sim->add_option("-o,--output", opts->output, "Campaign CSV to write")->check(output_name())->required();
+  sim->add_option("--truth-output", opts->truth_output, "Also write the truth as a displacement table")->check(output_name());
   sim->add_flag("--json", opts->json, "Print a JSON summary");
   sim->callback([opts] { run(*opts); });
 }

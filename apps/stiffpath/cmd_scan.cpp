@@ -7,6 +7,7 @@
 #include "commands.hpp"
 #include "progress.hpp"
 #include "stiffpath/core/csv.hpp"
+#include "stiffpath/core/distinct_files.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/vision/image_io.hpp"
 #include "stiffpath/vision/overlay.hpp"
@@ -85,6 +86,7 @@ void print_result(const nlohmann::json& out, const std::string& indent) {
 }
 
 void run_scan(const ScanCliOptions& o) {
+  core::check_distinct_files({{"image", o.image}}, {{"--overlay", o.overlay}});
   vision::ScanOptions options;
   if (o.shape_option->count() > 0) {
     const vision::ScanShape shape = vision::parse_scan_shape(o.shape, "--shape");
@@ -170,7 +172,7 @@ void add_scan_command(CLI::App& app) {
   cmd->add_flag("--all-marks", opts->all_marks, "Measure every mark on the scan (a plate): one result per mark with its bounding box");
   cmd->add_option("--min-mark-mm", opts->min_mark_mm, "With --all-marks: smaller dark features are listed as labels, not measured (mm)")->capture_default_str()
       ->check(within(0.001, 1000, "mm"));
-  cmd->add_option("--overlay", opts->overlay, "Write a picture of the detected centre line, fitted line and spline (PNG)");
+  cmd->add_option("--overlay", opts->overlay, "Write a picture of the detected centre line, fitted line and spline (PNG)")->check(output_name());
   cmd->add_option("--spline-cutoff-mm", opts->cutoff_mm, "Smoothing spline cutoff wavelength (mm)")->capture_default_str()
       ->check(within(0, 10000.0, "mm"));
   cmd->add_option("--corner-trim-mm", opts->trim_mm, "Part of each side next to a corner left out (mm)")->capture_default_str()

@@ -88,6 +88,7 @@ void put_metrics(nlohmann::json& j, const simulation::RunMetrics& m, bool path_a
 void simulate(const SimulateArgs& a) {
   job::JointReader reader(a.joints);
   const kinematics::Robot robot = robot_for_joints(a.robot, reader, a.joints, a.force_robot, "simulates");
+  core::check_distinct_files(robot_inputs(robot, true, {{"joints", a.joints}}), {{"--marks-csv", a.marks_csv}});
   simulation::TrueComplianceOptions truth_options = a.truth;
   simulation::SimulationOptions sim = a.sim;
   apply_twin_flags(a.twin, sim, truth_options);
@@ -123,7 +124,7 @@ void simulate(const SimulateArgs& a) {
     j["line_strokes"] = m.line_strokes;
     // The stroke list is written one stroke at a time: a document of a long job's thousands of strokes
     // would cost more memory than the simulation.
-    std::string head = j.dump(2);
+    std::string head = j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace);  // a file name may not be UTF-8
     head.resize(head.rfind('}'));
     while (!head.empty() && head.back() == '\n') head.pop_back();
     std::cout << head << ",\n  \"stroke_metrics\": [";
@@ -175,7 +176,7 @@ void add_simulate_command(CLI::App& app) {
       ->check(CLI::Range(0, 12))->capture_default_str();
   cmd->add_option("--seed", a->truth.seed, "Seed of the perturbation")->capture_default_str();
   add_twin_flags(cmd, a->twin, a->sim, a->truth);
-  cmd->add_option("--marks-csv", a->marks_csv, "Also write the mark (x_mm, y_mm, y down) for `render-scan --path-csv`");
+  cmd->add_option("--marks-csv", a->marks_csv, "Also write the mark (x_mm, y_mm, y down) for `render-scan --path-csv`")->check(output_name());
   cmd->add_flag("--force-robot", a->force_robot, "Simulate a joint file written for another robot anyway");
   cmd->add_flag("--json", a->json, "Print the metrics as JSON");
   cmd->add_flag("--quiet", a->quiet, "No progress bar (it is shown only on a terminal anyway)");
