@@ -8,6 +8,7 @@
 
 #include "stiffpath/core/error.hpp"
 
+#include "stiffpath/compliance/fit_budget.hpp"
 #include "stiffpath/compliance/grid.hpp"
 #include "stiffpath/compliance/grid_model.hpp"
 #include "stiffpath/compliance/physical_model.hpp"
@@ -113,6 +114,7 @@ std::optional<Prediction> from_neighbours(const Grid& grid, const std::vector<Pr
 
 CvReport cross_validate(const std::vector<PointSamples>& points, const kinematics::FiveBarGeometry& geometry,
                         const std::string& source, ZeroForce zero_force) {
+  check_cv_budget(points, source);
   CvReport report;
   report.source = source;
   report.zero_force = zero_force;

@@ -21,6 +21,12 @@ inline constexpr double max_csv_magnitude = 1e12;
 //! its line before it is read whole.
 inline constexpr std::size_t max_csv_line_bytes = 64U << 10U;
 
+//! Most data rows a table read whole into memory may hold (displacement tables, campaigns,
+//! repeatability trials): 10^6 rows, about 0.6 GB once read; the thesis's table has 600.
+inline constexpr std::size_t max_table_rows = 1'000'000;
+//! Most bytes of such a table when it is read whole before parsing (256 MiB: 10^6 rows of 256 bytes).
+inline constexpr std::size_t max_table_bytes = 256U << 20U;
+
 //! Whether `text` is valid UTF-8 (no overlong forms, surrogates or code points beyond U+10FFFF).
 [[nodiscard]] bool valid_utf8(std::string_view text) noexcept;
 
