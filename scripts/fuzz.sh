@@ -8,7 +8,7 @@ build=${1:?build dir, e.g. build/fuzz}
 seconds=${2:-20}
 shift 2 || true
 harnesses=("$@")
-[ ${#harnesses[@]} -gt 0 ] || harnesses=(gcode csv displacement_table campaign repeatability joint_file robot_json model_json image_metadata plate)
+[ ${#harnesses[@]} -gt 0 ] || harnesses=(gcode csv displacement_table campaign repeatability joint_file robot_json model_json image_metadata plate c_robot c_model)
 
 # Seed folders per harness: the shipped data, the test inputs and the malformed-input corpus.
 seeds() {
@@ -20,7 +20,8 @@ seeds() {
     repeatability) echo data/thesis tests/data/bad/repeatability ;;
     joint_file) echo tests/data/fuzz_seeds/joint_file tests/data/bad/joints ;;
     robot_json) echo data/robots tests/data/robots tests/data/bad/robot ;;
-    model_json) echo tests/data/fuzz_seeds/model_json tests/data/bad/model ;;
+    model_json|c_model) echo tests/data/fuzz_seeds/model_json tests/data/bad/model ;;
+    c_robot) echo data/robots tests/data/robots tests/data/bad/robot ;;
     image_metadata) echo tests/data/fuzz_seeds/image_metadata tests/data/fuzz_regressions/image_metadata tests/data/bad/image ;;
     plate) echo examples/plates tests/data/fuzz_seeds/plate tests/data/bad/plate ;;
   esac

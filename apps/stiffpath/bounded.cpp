@@ -20,4 +20,12 @@ CLI::Validator within(double low, double high, const char* unit) {
       description);
 }
 
+CLI::Validator output_name() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        return text.empty() ? "an empty name names no file: give a path (or - for standard output where allowed)" : "";
+      },
+      "", "OUTPUT");
+}
+
 }  // namespace stiffpath::cli

@@ -9,4 +9,7 @@ namespace stiffpath::cli {
 //! "--flag: must be within [low, high] unit, got value". Each value of a multi-value option is checked.
 CLI::Validator within(double low, double high, const char* unit);
 
+//! Accepts a non-empty output name: "-o ''" would write nothing and say nothing, so it is refused.
+CLI::Validator output_name();
+
 }  // namespace stiffpath::cli

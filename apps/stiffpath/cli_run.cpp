@@ -1,6 +1,8 @@
 // What both CLI programs (stiffpath, stiffpath-vision) share: parsing, error reports, exit codes (2 bad input, 1 internal).
 #include <cmath>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
 #include <set>
 #include <sstream>
@@ -72,7 +74,15 @@ void report(const CLI::App& app, const stiffpath::Error& e) {
 
 void enable_json_errors(const CLI::App* command) { json_error_commands().insert(command); }
 
-int run(CLI::App& app, int argc, char** argv) {
+namespace {
+// Flushes both standard output streams; false when a write failed (a full disk, /dev/full, a closed pipe).
+bool flush_standard_output() {
+  std::cout.flush();
+  const bool ok = static_cast<bool>(std::cout);
+  return std::fflush(stdout) == 0 && std::ferror(stdout) == 0 && ok;
+}
+
+int run_command(CLI::App& app, int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -86,6 +96,18 @@ int run(CLI::App& app, int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+}  // namespace
+
+int run(CLI::App& app, int argc, char** argv) {
+  const int status = run_command(app, argc, argv);
+  if (!flush_standard_output()) {
+    const int error = errno;
+    std::cerr << "error: standard output: write failed (" << std::strerror(error) << "): what was printed is incomplete\n";
+    return 2;
+  }
+  return status;
 }
 
 }  // namespace stiffpath::cli

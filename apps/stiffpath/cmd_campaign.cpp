@@ -13,6 +13,7 @@
 #include "robot_flags.hpp"
 #include "stiffpath/calibration/campaign_plan.hpp"
 #include "stiffpath/compliance/model_factory.hpp"
+#include "stiffpath/core/distinct_files.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/core/output_budget.hpp"
 #include "stiffpath/core/units.hpp"
@@ -70,6 +71,8 @@ void run(const SimulateOptions& o) {
   bool gaps = false;
   if (!o.plan.empty()) {
     if (!o.truth.empty()) throw Error("--plan and --truth both give the truth: use one");
+    core::check_distinct_files(robot_inputs(robot, false, {{"--plan", o.plan}, {"--field", o.field}}),
+                               {{"-o", o.output}, {"--truth-output", o.truth_output}});
     const auto rows = calibration::load_campaign_plan(o.plan);
     const auto field = known_field(robot, o.field, o.field_terms, compliance::table_region(rows));
     table = calibration::truth_from_field(rows, *field);
@@ -80,7 +83,10 @@ void run(const SimulateOptions& o) {
                               "--field",
                               robot.name));
     }
-    table = measurement::load_displacement_table(o.truth.empty() ? robot.compliance.table : table_ref(o.truth));
+    const core::DataRef truth = o.truth.empty() ? robot.compliance.table : table_ref(o.truth);
+    core::check_distinct_files(robot_inputs(robot, false, {{"--truth", truth.builtin ? "" : truth.path}}),
+                               {{"-o", o.output}, {"--truth-output", o.truth_output}});
+    table = measurement::load_displacement_table(truth);
     if (table.mechanisms().size() > 1) table = table.filter(robot.compliance.rows);
     if (table.rows.empty()) {
       throw Error(SourceLocation{table.source},
@@ -284,8 +290,8 @@ void add_campaign_command(CLI::App& app) {
   sim->add_option("--seed", opts->seed, "Random seed")->capture_default_str();
   sim->add_option("--g-height-mm", opts->g_height_mm, "z of G at step 0 in the CMM frame (mm)")->capture_default_str()
       ->check(within(-10000.0, 10000.0, "mm"));
-  sim->add_option("-o,--output", opts->output, "Campaign CSV to write")->required();
-  sim->add_option("--truth-output", opts->truth_output, "Also write the truth as a displacement table");
+  sim->add_option("-o,--output", opts->output, "Campaign CSV to write")->check(output_name())->required();
+  sim->add_option("--truth-output", opts->truth_output, "Also write the truth as a displacement table")->check(output_name());
   sim->add_flag("--json", opts->json, "Print a JSON summary");
   sim->callback([opts] { run(*opts); });
 

@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "progress.hpp"
 #include "stiffpath/core/output_budget.hpp"
+#include "stiffpath/core/atomic_directory.hpp"
 #include "stiffpath/core/atomic_file.hpp"
 #include "stiffpath/report/experiment_plots.hpp"
 #include "stiffpath/report/gnuplot.hpp"
@@ -34,6 +35,20 @@ struct ExperimentArgs {
   simulation::RobustnessOptions robust;
 };
 
+// The files an experiment reads (robot files, G-code paths without their ":SIDES"), which its
+// directory of outputs may never replace.
+std::vector<core::NamedPath> experiment_inputs(const ExperimentArgs& a) {
+  std::vector<core::NamedPath> inputs;
+  for (const auto& robot : a.options.robots) inputs.push_back({"--robots", robot});
+  for (const auto& path : a.paths) {
+    const auto colon = path.rfind(':');
+    const bool sides = colon != std::string::npos && colon + 1 < path.size() &&
+                       path.find_first_not_of("0123456789", colon + 1) == std::string::npos;
+    inputs.push_back({"--path", sides ? path.substr(0, colon) : path});
+  }
+  return inputs;
+}
+
 void robustness(ExperimentArgs& a, const std::filesystem::path& dir) {
   a.robust.base = a.options;
   if (a.robots_given) a.robust.robot = a.options.robots.front();
@@ -44,20 +59,22 @@ void robustness(ExperimentArgs& a, const std::filesystem::path& dir) {
   core::check_output_directory(a.output);  // before the runs, not after them
   const auto rows = simulation::run_robustness(a.robust);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  core::create_output_directory(dir);
-  core::write_file_atomically(dir / "robustness.tsv", simulation::robustness_tsv(rows));
+  core::AtomicDirectory out(dir, experiment_inputs(a));  // all or nothing: a full disk leaves no half
+  core::write_file_atomically(out.staging() / "robustness.tsv", simulation::robustness_tsv(rows));
   const std::string table = simulation::robustness_markdown(rows);
-  core::write_file_atomically(dir / "robustness.md", table);
-  fmt::print("{} runs in {:.1f} s → {}\n\n{}", runs, seconds, (dir / "robustness.tsv").string(), table);
-  if (a.no_plots) return;
-  if (!report::gnuplot_available()) {
-    fmt::print("\ngnuplot not found: figures skipped\n");
-    return;
+  core::write_file_atomically(out.staging() / "robustness.md", table);
+  std::string figures_line;
+  if (!a.no_plots && !report::gnuplot_available()) {
+    figures_line = "\ngnuplot not found: figures skipped\n";
+  } else if (!a.no_plots) {
+    std::filesystem::create_directory(out.staging() / "figures");
+    const auto figures =
+        report::write_robustness_figures(out.staging() / "figures", rows, report::parse_style(a.style));
+    figures_line = fmt::format("\nfigures ({}, SVG, PNG, gnuplot script and data each): {}\n",
+                               (dir / "figures").string(), fmt::join(figures, ", "));
   }
-  const auto figures_dir = dir / "figures";
-  core::create_output_directory(figures_dir);
-  const auto figures = report::write_robustness_figures(figures_dir, rows, report::parse_style(a.style));
-  fmt::print("\nfigures ({}, SVG, PNG, gnuplot script and data each): {}\n", figures_dir.string(), fmt::join(figures, ", "));
+  out.commit();
+  fmt::print("{} runs in {:.1f} s → {}\n\n{}{}", runs, seconds, (dir / "robustness.tsv").string(), table, figures_line);
 }
 
 void experiment(ExperimentArgs a) {
@@ -77,31 +94,32 @@ void experiment(ExperimentArgs a) {
   const auto results = simulation::run_experiment(a.options, progress.callback());
   progress.finish();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  core::create_output_directory(dir);
-  core::write_file_atomically(dir / "results.csv", simulation::experiment_csv(results));
+  core::AtomicDirectory out(dir, experiment_inputs(a));  // all or nothing: a full disk leaves no half
+  core::write_file_atomically(out.staging() / "results.csv", simulation::experiment_csv(results));
   const std::string summary = simulation::experiment_summary(results);
-  core::write_file_atomically(dir / "summary.md", summary);
-  fmt::print("{} runs in {:.2f} s → {}\n\n{}", results.size(), seconds, (dir / "results.csv").string(), summary);
-  if (!a.no_plots) {
-    if (!report::gnuplot_available()) {
-      fmt::print("\ngnuplot not found: figures skipped\n");
-      return;
-    }
-    const auto figures_dir = dir / "figures";
-    core::create_output_directory(figures_dir);
+  core::write_file_atomically(out.staging() / "summary.md", summary);
+  std::string figures_line;
+  if (!a.no_plots && !report::gnuplot_available()) {
+    figures_line = "\ngnuplot not found: figures skipped\n";
+  } else if (!a.no_plots) {
+    std::filesystem::create_directory(out.staging() / "figures");
     // Without compensation and each variant run, as its own series, so that `plot results` on results.csv
     // draws the same figures.
-    const auto figures = report::write_results_figures(figures_dir, report::results_from_runs(results), style);
-    fmt::print("\nfigures ({}, SVG, PNG, gnuplot script and data each): {}\n", figures_dir.string(),
-               fmt::join(figures, ", "));
+    const auto figures =
+        report::write_results_figures(out.staging() / "figures", report::results_from_runs(results), style);
+    figures_line = fmt::format("\nfigures ({}, SVG, PNG, gnuplot script and data each): {}\n",
+                               (dir / "figures").string(), fmt::join(figures, ", "));
   }
+  out.commit();
+  fmt::print("{} runs in {:.2f} s → {}\n\n{}{}", results.size(), seconds, (dir / "results.csv").string(), summary,
+             figures_line);
 }
 }  // namespace
 
 void add_experiment_command(CLI::App& app) {
   auto a = std::make_shared<ExperimentArgs>();
   auto* cmd = app.add_subcommand("experiment", "The thesis's test matrix on the digital twin of robots (figs. 4.9-4.11)");
-  cmd->add_option("-o,--output", a->output, "Output directory (results.csv, summary.md, figures/)")->capture_default_str();
+  cmd->add_option("-o,--output", a->output, "Output directory (results.csv, summary.md, figures/)")->check(output_name())->capture_default_str();
   auto* robots = cmd->add_option("--robots,--robot,--mechanisms", a->options.robots, "Presets or robot files to run")
                      ->capture_default_str();
   auto* motions = cmd->add_option("--motions", a->options.motions,

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <memory>
 
+#include "bounded.hpp"
 #include "commands.hpp"
 #include "robot_flags.hpp"
 #include "stiffpath/compliance/model_factory.hpp"
@@ -31,7 +32,10 @@ void run(const FitOptions& o) {
   if (o.data.empty() && robot.compliance.table.empty()) {
     throw Error(fmt::format("robot '{}' names no displacement table: give one as the first argument", robot.name));
   }
-  const auto table = measurement::load_displacement_table(o.data.empty() ? robot.compliance.table : table_ref(o.data));
+  const core::DataRef table_file = o.data.empty() ? robot.compliance.table : table_ref(o.data);
+  core::check_distinct_files(robot_inputs(robot, false, {{"data", table_file.builtin ? "" : table_file.path}}),
+                             {{"-o", o.output}});
+  const auto table = measurement::load_displacement_table(table_file);
   const std::string rows = o.rows_given ? o.rows : robot.compliance.rows;
   auto fitted = compliance::fit_model(table, rows, o.method, compliance::parse_force_convention(o.forces), robot);
   fitted.model->set_outside_policy(compliance::parse_outside_policy(o.outside));
@@ -102,7 +106,7 @@ void add_fit_command(CLI::App& app) {
                   "Beyond 1 mm outside the measured region: error (refuse), clamp or extrapolate")->capture_default_str();
   cmd->add_option("--zero-force", o->zero_force, "relative (default) or thesis-raw (keep eq. 4.8's intercepts)")
       ->capture_default_str();
-  cmd->add_option("-o,--output", o->output, "Write the model file (JSON)");
+  cmd->add_option("-o,--output", o->output, "Write the model file (JSON)")->check(output_name());
   cmd->add_flag("--json", o->json, "Print the model document");
   cmd->callback([o, rows] {
     o->rows_given = rows->count() > 0;

@@ -31,6 +31,7 @@ void run(const MeasureOptions& o) {
     throw Error(SourceLocation{robot.file.label()},
                 fmt::format("robot '{}' has no measurement replica (measurement.UG_mm, UL_mm) for eq. 2.3", robot.name));
   }
+  core::check_distinct_files(robot_inputs(robot, false, {{"campaign", o.campaign}}), {{"-o", o.output}});
   const auto campaign = measurement::load_campaign(o.campaign);
   measurement::ProcessOptions p;
   p.mechanism = robot.compliance.rows;
@@ -90,7 +91,7 @@ void add_measure_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("measure", "Process a raw CMM campaign (U, L readings) into a displacement table");
   cmd->add_option("campaign", opts->campaign, "Campaign CSV (see docs/measurement.md)")->required();
   add_robot_flag(cmd, opts->robot)->description("Robot: |UG|, |UL| of its replica and its rows label (default: oc-gu)");
-  cmd->add_option("-o,--output", opts->output, "Displacement table CSV to write")->required();
+  cmd->add_option("-o,--output", opts->output, "Displacement table CSV to write")->check(output_name())->required();
   cmd->add_flag("--nominal-forces", opts->nominal_forces,
                 "Write F_N as step x nominal step (50 ... 250 N) as the thesis did, not the measured kgf");
   cmd->add_option("--nominal-step-N", opts->nominal_step_N, "Nominal force per load step (N)")->capture_default_str()

@@ -7,6 +7,7 @@
 #include <optional>
 #include <vector>
 
+#include "bounded.hpp"
 #include "commands.hpp"
 #include "job_budget.hpp"
 #include "progress.hpp"
@@ -74,6 +75,7 @@ class WorkspaceCheck final : public motion::SampleSource {
 
 void run_plan(const PlanArgs& a) {
   const auto robot = load_robot_flag(a.robot);
+  core::check_distinct_files(robot_inputs(robot, false, {{"gcode", a.job}}), {{"-o", a.output}});
   motion::PlanOptions options = plan_options(a.motion, robot);
   if (a.json) options.gcode.on_warnings = nullptr;  // they go into the JSON document
   Progress progress("plan", a.quiet);
@@ -140,7 +142,7 @@ void add_plan_command(CLI::App& app) {
   cmd->add_option("job", a->job, "G-code program (mm, robot frame unless --work-offset-mm)")->required();
   add_motion_flags(cmd, a->motion);
   add_robot_flag(cmd, a->robot)->description("Robot whose workspace every sample must lie in (default: oc-gu)");
-  cmd->add_option("-o,--output", a->output, "Write the samples to this CSV file (- for standard output)");
+  cmd->add_option("-o,--output", a->output, "Write the samples to this CSV file (- for standard output)")->check(output_name());
   add_max_samples_flag(cmd, a->max_samples);
   cmd->add_flag("--json", a->json, "Print the summary as JSON (errors too, on stderr)");
   cmd->add_flag("--quiet", a->quiet, "No progress bar (it is shown only on a terminal anyway)");

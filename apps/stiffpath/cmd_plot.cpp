@@ -6,6 +6,7 @@
 #include <fmt/ranges.h>
 #include <memory>
 
+#include "bounded.hpp"
 #include "commands.hpp"
 #include "joint_robot.hpp"
 #include "progress.hpp"
@@ -13,6 +14,7 @@
 #include "twin_flags.hpp"
 #include "stiffpath/compliance/cross_validation.hpp"
 #include "stiffpath/compliance/model_factory.hpp"
+#include "stiffpath/core/atomic_directory.hpp"
 #include "stiffpath/core/csv.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/core/output_budget.hpp"
@@ -45,11 +47,6 @@ struct PlotOptions {
 //! Most mark points a simulated or scanned mark may hold (20 M points: 320 MB in memory).
 constexpr std::size_t kMaxMarkPoints = 20'000'000;
 
-// The figures' directory, created (a file in the way or no permission: stiffpath::Error naming it).
-std::filesystem::path output_dir(const std::string& dir) {
-  core::create_output_directory(dir);
-  return dir;
-}
 
 std::string safe_name(std::string name) {
   for (char& c : name) {
@@ -59,7 +56,7 @@ std::string safe_name(std::string name) {
 }
 
 void add_common(CLI::App* cmd, PlotOptions& o) {
-  cmd->add_option("-o,--output-dir", o.dir, "Directory for the figures")->capture_default_str();
+  cmd->add_option("-o,--output-dir", o.dir, "Directory for the figures")->check(output_name())->capture_default_str();
   cmd->add_option("--style", o.style, "screen (colour) or paper (black and white, larger fonts)")
       ->check(CLI::IsMember({"screen", "paper"}))->capture_default_str();
 }
@@ -92,6 +89,7 @@ std::vector<Eigen::Vector2d> read_mark(const std::string& file, bool y_down) {
 
 void plot_mark_command(const PlotOptions& o) {
   core::check_output_directory(o.dir);  // before the twin runs, not after
+  std::vector<core::NamedPath> inputs;
   report::MarkPlotInput input;
   input.label = std::filesystem::path(o.input).filename().string();
   if (o.mark.empty()) {
@@ -101,6 +99,7 @@ void plot_mark_command(const PlotOptions& o) {
     }
     job::JointReader reader(o.input);
     const kinematics::Robot robot = robot_for_joints(o.robot, reader, o.input, o.force_robot, "plots");
+    inputs = robot_inputs(robot);
     // The twin as `simulate` runs it by default: the structural C_true, the loaded servo, the CG lever.
     simulation::SimulationOptions sim;
     simulation::TrueComplianceOptions truth_options;
@@ -122,12 +121,16 @@ void plot_mark_command(const PlotOptions& o) {
     if (o.source.empty()) {
       throw Error(SourceLocation{o.mark}, "say whether this mark is simulated or measured: --source simulated|measured");
     }
+    inputs = {{"--mark", o.mark}};
     input.commanded_m = commanded_path(o.input);
     input.mark_m = read_mark(o.mark, o.y_down);
     input.source = o.source;
   }
+  inputs.push_back({"joints", o.input});
   const std::string name = "mark_" + safe_name(std::filesystem::path(o.input).stem().string());
-  const auto s = report::plot_mark(output_dir(o.dir), name, input, report::parse_style(o.style), o.magnification);
+  core::AtomicDirectory out(o.dir, inputs);
+  const auto s = report::plot_mark(out.staging(), name, input, report::parse_style(o.style), o.magnification);
+  out.commit();
   print_written(o.dir, {name});
   fmt::print("{} mark: max deviation {:.1f} µm, RMS {:.1f} µm, drawn x{:g}\n", input.source, s.max_deviation_um,
              s.rms_deviation_um, s.magnification);
@@ -150,10 +153,14 @@ void add_plot_command(CLI::App& app) {
     const std::string name =
         "compliance_" + safe_name(!o->request.model.empty() ? std::filesystem::path(o->request.model).stem().string()
                                                             : robot.name + "-" + loaded.model->method());
+    auto inputs = robot_inputs(robot);
+    inputs.push_back({"--model", o->request.model});
+    core::AtomicDirectory out(o->dir, inputs);
     const double largest = report::plot_compliance_map(
-        output_dir(o->dir), name, *loaded.model,
+        out.staging(), name, *loaded.model,
         fmt::format("{} ({}, {}): largest compliance", robot.name, loaded.label, loaded.model->method()),
         o->margin_mm * 1e-3, report::parse_style(o->style));
+    out.commit();
     print_written(o->dir, {name});
     fmt::print("largest compliance {:.3f} µm/N\n", largest);
   });
@@ -171,14 +178,18 @@ void add_plot_command(CLI::App& app) {
     report.rows = robot.compliance.rows;
     report.robot = robot.name;
     const std::string name = "cv_" + safe_name(robot.name);
-    report::plot_cross_validation(output_dir(o->dir), name, report, report::parse_style(o->style));
+    auto inputs = robot_inputs(robot);
+    inputs.push_back({"data", o->data});
+    core::AtomicDirectory out(o->dir, inputs);
+    report::plot_cross_validation(out.staging(), name, report, report::parse_style(o->style));
+    out.commit();
     print_written(o->dir, {name});
   });
 
   auto* run = plot->add_subcommand("run", "Planned vs commanded motion, force, deflection and joints over time");
   run->add_option("joints", o->input, "Joint trajectory file from `stiffpath run` (CSV or binary)")->required();
   run->add_option("--gain", o->gain, "The run's compensation gain k (predicted deflection = (p - p_cmd)/k)")
-      ->check(CLI::PositiveNumber)->capture_default_str();
+      ->check(CLI::PositiveNumber)->check(within(0.0, 10.0, ""))->capture_default_str();
   run->add_option("--max-points", o->max_points, "Plotted points per series (peaks kept when decimating)")
       ->check(CLI::Range(100, 100000))->capture_default_str();
   add_robot_flag(run, o->robot)->description("Robot the joints were made for (default: the preset the file records, "
@@ -193,7 +204,11 @@ void add_plot_command(CLI::App& app) {
     }();
     core::check_output_directory(o->dir);
     report::RunPlotOptions options{o->gain, o->max_points, 40, report::parse_style(o->style), &robot};
-    const auto s = report::plot_run(output_dir(o->dir), name, o->input, options);
+    auto inputs = robot_inputs(robot, false);
+    inputs.push_back({"joints", o->input});
+    core::AtomicDirectory out(o->dir, inputs);
+    const auto s = report::plot_run(out.staging(), name, o->input, options);
+    out.commit();
     print_written(o->dir, s.figures);
     fmt::print("robot {} (geometry {}, {})\n", robot.name, robot.geometry_hash().substr(0, 12), robot.source());
     fmt::print("{} samples over {:.4f} s ({} plotted): peak speed {:.1f} mm/s, acceleration {:.2f} m/s², jerk {:.0f} "
@@ -226,10 +241,12 @@ void add_plot_command(CLI::App& app) {
   add_common(results, *o);
   results->callback([o] {
     const auto table = report::load_results_csv(o->input, o->source);
-    const auto figures = report::write_results_figures(output_dir(o->dir), table, report::parse_style(o->style));
+    core::AtomicDirectory out(o->dir, {{"table", o->input}});
+    const auto figures = report::write_results_figures(out.staging(), table, report::parse_style(o->style));
     if (figures.empty()) {
       throw Error(SourceLocation{o->input}, "no rows with motion x, y or triangle: nothing to draw as figs. 4.9-4.11");
     }
+    out.commit();
     print_written(o->dir, figures);
   });
 }

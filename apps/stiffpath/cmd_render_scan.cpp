@@ -11,6 +11,7 @@
 #include "vision_resources.hpp"
 #include "stiffpath/core/atomic_file.hpp"
 #include "stiffpath/core/csv.hpp"
+#include "stiffpath/core/distinct_files.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/evaluation/metrics_json.hpp"
 #include "stiffpath/vision/io/image_io.hpp"
@@ -101,8 +102,7 @@ nlohmann::json plate_truth(const vision::RenderedPlate& plate, const vision::Pla
 void render(RenderCliOptions& o);
 
 void run_render(RenderCliOptions& o) {
-  if (!o.plate.empty() && o.plate == o.output) throw Error(fmt::format("{}: the plate file is also the output; an input is never an output", o.output));
-  if (!o.path_csv.empty() && o.path_csv == o.output) throw Error(fmt::format("{}: the path file is also the output; an input is never an output", o.output));
+  core::check_distinct_files({{"--plate", o.plate}, {"--path-csv", o.path_csv}}, {{"output", o.output}, {"--truth", o.truth}});
   within_resources(o.output, "rendering the scan", 0.0, [&] { render(o); });
 }
 
@@ -164,7 +164,7 @@ void render(RenderCliOptions& o) {
   truth["image"] = o.output;
   truth["image_px"] = {width, height};
   truth["seed"] = o.render.seed;
-  if (!o.truth.empty()) core::write_file_atomically(o.truth, truth.dump(2) + "\n");
+  if (!o.truth.empty()) core::write_file_atomically(o.truth, truth.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   if (o.json) {
     print_json(truth);
     return;
@@ -188,7 +188,7 @@ void render(RenderCliOptions& o) {
 void add_render_scan_command(CLI::App& app) {
   auto o = std::make_shared<RenderCliOptions>();
   auto* cmd = app.add_subcommand("render-scan", "Draw a synthetic scan of a laser-marked path (or a plate of marks) and print its ground truth");
-  cmd->add_option("output", o->output, "Image to write (.png, .tif, .jpg); the resolution is stored in it")->required();
+  cmd->add_option("output", o->output, "Image to write (.png, .tif, .jpg); the resolution is stored in it")->check(output_name())->required();
   cmd->add_option("--shape", o->shape, "line, triangle or polyline (with --vertices-mm)")->capture_default_str();
   cmd->add_option("--length-mm", o->length_mm, "Line length (mm)")->capture_default_str()
       ->check(within(0.01, 2000, "mm"));
@@ -229,7 +229,7 @@ void add_render_scan_command(CLI::App& app) {
       ->check(within(8, 16, ""));
   cmd->add_flag("--colour", o->render.colour, "Write a colour (BGR) image");
   cmd->add_option("--seed", o->render.seed, "Seed of the noise, texture and specks")->capture_default_str();
-  cmd->add_option("--truth", o->truth, "Also write the ground truth JSON to this file");
+  cmd->add_option("--truth", o->truth, "Also write the ground truth JSON to this file")->check(output_name());
   cmd->add_flag("--json", o->json, "Print the ground truth as one JSON object");
   cmd->add_flag("--quiet", o->quiet, "No progress bar (it is shown only on a terminal anyway)");
   cmd->callback([o] { run_render(*o); });

@@ -3,12 +3,14 @@
 #include <fmt/format.h>
 #include <memory>
 
+#include "bounded.hpp"
 #include "commands.hpp"
 #include "joint_robot.hpp"
 #include "progress.hpp"
 #include "robot_flags.hpp"
 #include "stiffpath/compliance/cross_validation.hpp"
 #include "stiffpath/compliance/model_factory.hpp"
+#include "stiffpath/core/atomic_directory.hpp"
 #include "stiffpath/core/atomic_file.hpp"
 #include "stiffpath/core/data_ref.hpp"
 #include "stiffpath/core/error.hpp"
@@ -185,7 +187,7 @@ void make_report(const ReportArgs& a) {
   }
   if (!a.experiment.empty()) (void)report::load_results_csv((std::filesystem::path(a.experiment) / "results.csv").string());
   core::check_output_directory(a.output);
-  const std::filesystem::path dir(a.output), figs = dir / "figures";
+  const std::filesystem::path dir(a.output);
   Progress progress("report", a.quiet);
   std::vector<report::Section> sections;
   const bool has_data = !robot.compliance.table.path.empty();
@@ -193,7 +195,16 @@ void make_report(const ReportArgs& a) {
   if (has_data || !robot.compliance.model.path.empty() || !a.request.model.empty()) {
     model = std::make_unique<compliance::LoadedModel>(compliance::load_robot_model(robot, a.request));
   }
-  core::create_output_directory(figs);
+  auto inputs = robot_inputs(robot);
+  inputs.push_back({"--model", a.request.model});
+  inputs.push_back({"--joints", a.joints});
+  if (!a.experiment.empty()) {
+    inputs.push_back({"--experiment", std::filesystem::path(a.experiment) / "results.csv"});
+    inputs.push_back({"--experiment", std::filesystem::path(a.experiment) / "summary.md"});
+  }
+  core::AtomicDirectory out(dir, inputs);  // all or nothing: a full disk leaves no half
+  const std::filesystem::path figs = out.staging() / "figures";
+  std::filesystem::create_directory(figs);
   sections.push_back(robot_section(robot, defaulted, a, model.get(), written_for));
   progress.update(0.1, "data checks");
   if (has_data) {
@@ -212,9 +223,10 @@ void make_report(const ReportArgs& a) {
                                            a.joints.empty() ? "" : " · run " + a.joints,
                                            a.experiment.empty() ? "" : " · twin results " + a.experiment);
   const std::string page = report::html_page("stiffpath report: " + robot.name, subtitle, sections);
-  core::write_file_atomically(dir / "report.html", page);
+  core::write_file_atomically(out.staging() / "report.html", page);
+  out.commit();
   fmt::print("wrote {} ({} sections, {:.0f} kB, figures also in {})\n", (dir / "report.html").string(),
-             sections.size(), static_cast<double>(page.size()) / 1024.0, figs.string());
+             sections.size(), static_cast<double>(page.size()) / 1024.0, (dir / "figures").string());
 }
 }  // namespace
 
@@ -226,9 +238,10 @@ void add_report_command(CLI::App& app) {
   cmd->add_option("--joints", a->joints, "A joint trajectory from `stiffpath run` to show (CSV or binary); the report "
                                          "is on the robot it records unless --robot");
   cmd->add_flag("--force-robot", a->force_robot, "Report a joint file written for another robot anyway");
-  cmd->add_option("--gain", a->gain, "That run's compensation gain")->check(CLI::PositiveNumber)->capture_default_str();
+  cmd->add_option("--gain", a->gain, "That run's compensation gain")->check(CLI::PositiveNumber)->check(within(0.0, 10.0, ""))
+      ->capture_default_str();
   cmd->add_option("--experiment", a->experiment, "An output directory of `stiffpath experiment` to show");
-  cmd->add_option("-o,--output", a->output, "Output directory (report.html, figures/)")->capture_default_str();
+  cmd->add_option("-o,--output", a->output, "Output directory (report.html, figures/)")->check(output_name())->capture_default_str();
   cmd->add_option("--style", a->style, "screen (colour) or paper (black and white, larger fonts)")
       ->check(CLI::IsMember({"screen", "paper"}))->capture_default_str();
   cmd->add_flag("--quiet", a->quiet, "No progress bar (it is shown only on a terminal anyway)");

@@ -76,6 +76,7 @@ compliance::GridBounds job_region(const std::string& job, const motion::PlanOpti
 
 void run(const RunArgs& a) {
   const auto robot = load_robot_flag(a.robot);
+  core::check_distinct_files(robot_inputs(robot, true, {{"gcode", a.job}, {"--model", a.request.model}}), {{"-o", a.output}});
   const bool compensating = !a.no_compensation && a.gain != 0.0;
   // A robot with no compliance data yet can still run without compensation (reach and limits only).
   const bool has_data = !robot.compliance.table.empty() || !robot.compliance.model.empty() || !a.request.model.empty();
@@ -218,7 +219,7 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--outside", a->outside,
                   "A sample more than 1 mm outside the model's measured region: error (refuse), clamp or extrapolate "
                   "(default: the model's, error unless it was fitted otherwise)");
-  cmd->add_option("-o,--output", a->output, "Joint trajectory file (written atomically; - for standard output)");
+  cmd->add_option("-o,--output", a->output, "Joint trajectory file (written atomically; - for standard output)")->check(output_name());
   add_max_samples_flag(cmd, a->max_samples);
   cmd->add_option("--format", a->format, "csv or bin")->capture_default_str();
   cmd->add_flag("--json", a->json, "Print the summary as JSON");

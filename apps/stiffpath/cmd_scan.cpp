@@ -11,6 +11,7 @@
 #include "vision_resources.hpp"
 #include "stiffpath/core/atomic_file.hpp"
 #include "stiffpath/core/csv.hpp"
+#include "stiffpath/core/distinct_files.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/vision/io/image_io.hpp"
 #include "stiffpath/vision/io/resolution.hpp"
@@ -114,6 +115,7 @@ void check_not_the_image(const std::string& output, const std::string& option, c
 }
 
 void run_scan(const ScanCliOptions& o) {
+  core::check_distinct_files({{"image", o.image}}, {{"--overlay", o.overlay}, {"--centre-line-csv", o.centre_line_csv}});
   vision::ScanOptions options;
   if (o.shape_option->count() > 0) {
     const vision::ScanShape shape = vision::parse_scan_shape(o.shape, "--shape");
@@ -214,9 +216,10 @@ void add_scan_command(CLI::App& app) {
   cmd->add_flag("--all-marks", opts->all_marks, "Measure every mark on the scan (a plate): one result per mark with its bounding box");
   cmd->add_option("--min-mark-mm", opts->min_mark_mm, "With --all-marks: smaller dark features are listed as labels, not measured (mm)")->capture_default_str()
       ->check(within(0.001, 1000, "mm"));
-  cmd->add_option("--overlay", opts->overlay, "Write a picture of the detected centre line, fitted line and spline (PNG)");
+  cmd->add_option("--overlay", opts->overlay, "Write a picture of the detected centre line, fitted line and spline (PNG)")->check(output_name());
   cmd->add_option("--centre-line-csv", opts->centre_line_csv,
-                  "Write every measured side's centre line: mark,side,x_mm,y_mm in mm of the scan from its image's top-left corner, y down");
+                  "Write every measured side's centre line: mark,side,x_mm,y_mm in mm of the scan from its image's top-left corner, y down")
+      ->check(output_name());
   cmd->add_option("--spline-cutoff-mm", opts->cutoff_mm, "Smoothing spline cutoff wavelength (mm)")->capture_default_str()
       ->check(within(0, 10000.0, "mm"));
   cmd->add_option("--corner-trim-mm", opts->trim_mm, "Part of each side next to a corner left out (mm)")->capture_default_str()

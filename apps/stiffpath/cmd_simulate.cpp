@@ -230,6 +230,7 @@ void put_metrics(nlohmann::json& j, const simulation::RunMetrics& m, bool path_a
 void simulate(const SimulateArgs& a) {
   job::JointReader reader(a.joints);
   const kinematics::Robot robot = robot_for_joints(a.robot, reader, a.joints, a.force_robot, "simulates");
+  core::check_distinct_files(robot_inputs(robot, true, {{"joints", a.joints}}), {{"--marks-csv", a.marks_csv}});
   simulation::TrueComplianceOptions truth_options = a.truth;
   simulation::SimulationOptions sim = a.sim;
   apply_twin_flags(a.twin, sim, truth_options);
@@ -271,7 +272,7 @@ void simulate(const SimulateArgs& a) {
     j["line_strokes"] = m.line_strokes;
     // The stroke list is written one stroke at a time: a document of a long job's thousands of strokes
     // would cost more memory than the simulation.
-    std::string head = j.dump(2);
+    std::string head = j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace);  // a file name may not be UTF-8
     head.resize(head.rfind('}'));
     while (!head.empty() && head.back() == '\n') head.pop_back();
     std::cout << head << ",\n  \"stroke_metrics\": [";
@@ -323,7 +324,7 @@ void add_simulate_command(CLI::App& app) {
       ->check(CLI::Range(0, 12))->capture_default_str();
   cmd->add_option("--seed", a->truth.seed, "Seed of the perturbation")->capture_default_str();
   add_twin_flags(cmd, a->twin, a->sim, a->truth);
-  cmd->add_option("--marks-csv", a->marks_csv, "Also write the mark (x_mm, y_mm, y down) for `render-scan --path-csv`");
+  cmd->add_option("--marks-csv", a->marks_csv, "Also write the mark (x_mm, y_mm, y down) for `render-scan --path-csv`")->check(output_name());
   cmd->add_option("--corner-trim-mm", a->corner_trim_mm,
                   "Points this close to a corner are left out of the sides' lines and splines (mm), as for scan")
       ->check(within(0.0, 1000.0, "mm"))->capture_default_str();

@@ -14,6 +14,20 @@ kinematics::Robot load_robot_flag(const std::string& robot) {
   return kinematics::load_robot(robot.empty() ? kDefaultRobot : robot);
 }
 
+std::vector<core::NamedPath> robot_inputs(const kinematics::Robot& robot, bool with_data,
+                                          std::vector<core::NamedPath> more) {
+  std::vector<core::NamedPath> inputs = std::move(more);
+  const auto add = [&](const char* what, const core::DataRef& ref) {
+    if (!ref.builtin && !ref.empty()) inputs.push_back({what, ref.path});
+  };
+  add("--robot", robot.file);
+  if (with_data) {
+    add("(the robot's table)", robot.compliance.table);
+    add("(the robot's model)", robot.compliance.model);
+  }
+  return inputs;
+}
+
 void add_model_flags(CLI::App* cmd, compliance::ModelRequest& request) {
   cmd->add_option("--model", request.model,
                   "Compliance model file or built-in (thesis-oc, thesis-sc[-<method>]); default: the robot's own");

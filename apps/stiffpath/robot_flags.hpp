@@ -3,9 +3,11 @@
 
 #include <CLI/CLI.hpp>
 #include <string>
+#include <vector>
 
 #include "stiffpath/compliance/model_factory.hpp"
 #include "stiffpath/core/data_ref.hpp"
+#include "stiffpath/core/distinct_files.hpp"
 #include "stiffpath/kinematics/robot.hpp"
 
 namespace stiffpath::cli {
@@ -17,6 +19,12 @@ inline constexpr const char* kDefaultRobot = "oc-gu";
 CLI::Option* add_robot_flag(CLI::App* cmd, std::string& robot);
 //! The named robot, or the default preset when `robot` is empty.
 kinematics::Robot load_robot_flag(const std::string& robot);
+
+//! The files a robot brings with it, as inputs that a command's outputs may never replace
+//! (core::check_distinct_files): its robot file and, with `with_data`, its table and model file;
+//! built-in ones are left out; then `more`, the command's other inputs.
+std::vector<core::NamedPath> robot_inputs(const kinematics::Robot& robot, bool with_data = true,
+                                          std::vector<core::NamedPath> more = {});
 
 //! Registers --model, --method and --force-model into `request`.
 void add_model_flags(CLI::App* cmd, compliance::ModelRequest& request);

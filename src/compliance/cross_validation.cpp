@@ -11,6 +11,7 @@
 
 #include "stiffpath/core/error.hpp"
 
+#include "stiffpath/compliance/fit_budget.hpp"
 #include "stiffpath/compliance/grid.hpp"
 #include "stiffpath/compliance/grid_model.hpp"
 #include "stiffpath/compliance/physical_model.hpp"
@@ -143,6 +144,7 @@ std::unique_ptr<Model> fit_physical_method(const std::string& method, const std:
 
 CvReport cross_validate(const std::vector<PointSamples>& points, const kinematics::FiveBarGeometry& geometry,
                         const std::string& source, ZeroForce zero_force, bool with_uncertainty) {
+  check_cv_budget(points, source);
   CvReport report;
   report.source = source;
   report.zero_force = zero_force;

@@ -4,7 +4,9 @@
 #include <fmt/format.h>
 
 #include "stiffpath/compliance/cross_validation.hpp"
+#include "stiffpath/compliance/fit_budget.hpp"
 #include "stiffpath/compliance/grid_model.hpp"
+#include "stiffpath/compliance/model_check.hpp"
 #include "stiffpath/compliance/model_file.hpp"
 #include "stiffpath/compliance/physical_model.hpp"
 #include "stiffpath/compliance/physical_spline_model.hpp"
@@ -32,6 +34,7 @@ LoadedModel fit_model(const measurement::DisplacementTable& table, const std::st
                 fmt::format("no rows with mechanism '{}' (the table has: {})", rows, join(table.mechanisms())));
   }
   const auto points = group_by_point(selected, convention);
+  check_fit_budget(points, method, table.source);  // before any fit
   LoadedModel out;
   out.provenance = {table.source, table.sha256, rows, convention, robot.name, robot.geometry, "named", nullptr, std::nullopt};
   std::string chosen = method;
@@ -60,6 +63,14 @@ LoadedModel fit_model(const measurement::DisplacementTable& table, const std::st
     throw Error(fmt::format("unknown compliance method '{}' (known: {}, auto)", method, join(method_names())));
   }
   out.label = fmt::format("{} fitted to {}{}", chosen, table.source, rows.empty() ? "" : " rows " + rows);
+  // A table whose displacements give a compliance that is not physical (negative, unbounded) is refused
+  // here, where it enters, rather than reversing the correction where the model serves.
+  if (const auto defect = find_model_defect(*out.model)) {
+    throw Error(SourceLocation{table.source},
+                fmt::format("{}; no model made: the {} model fitted to this table{} gives it (check the table's "
+                            "signs and units)",
+                            defect->describe(), chosen, rows.empty() ? "" : " (rows " + rows + ")"));
+  }
   return out;
 }
 

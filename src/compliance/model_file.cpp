@@ -11,6 +11,7 @@
 #include "stiffpath/compliance/physical_spline_model.hpp"
 #include "stiffpath/core/atomic_file.hpp"
 #include "stiffpath/core/error.hpp"
+#include "stiffpath/compliance/model_check.hpp"
 #include "stiffpath/core/json_fields.hpp"
 #include "stiffpath/kinematics/robot.hpp"
 
@@ -70,21 +71,17 @@ nlohmann::json model_to_json(const Model& model, const Provenance& provenance) {
 }
 
 void save_model(const std::string& path, const Model& model, const Provenance& provenance) {
-  core::write_file_atomically(path, model_to_json(model, provenance).dump(2) + "\n");
+  core::write_file_atomically(path, model_to_json(model, provenance).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 }
 
 namespace {
-//! Largest compliance entry a model file may give (um/N): 1 mm per newton, about 10^3 times the
-//! thesis robots' (0.5-2.5 um/N), so any real robot passes and 1e300 does not.
-constexpr double max_compliance_um_per_N = 1e3;
-
 // A JSON array of exactly `n` finite numbers.
 std::vector<double> numbers(const core::JsonObject& obj, std::string_view key, std::size_t n) {
   const auto& a = obj.array(key);
   if (n != 0 && a.size() != n) obj.fail(key, fmt::format("must have {} numbers, got {}", n, a.size()));
   std::vector<double> out;
   for (const auto& v : a) {
-    if (!v.is_number()) obj.fail(key, "must contain only numbers, got " + v.dump());
+    if (!v.is_number()) obj.fail(key, "must contain only numbers, got " + core::shown(v));
     out.push_back(v.get<double>());
   }
   return out;
@@ -99,7 +96,7 @@ Mat2 matrix(const core::JsonObject& obj, std::string_view key) {
   for (int r = 0; r < 2; ++r) {
     for (int c = 0; c < 2; ++c) {
       const auto& v = a[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)];
-      if (!v.is_number()) obj.fail(key, "must contain only numbers, got " + v.dump());
+      if (!v.is_number()) obj.fail(key, "must contain only numbers, got " + core::shown(v));
       m(r, c) = v.get<double>();
     }
   }
@@ -157,7 +154,7 @@ std::unique_ptr<PhysicalModel> physical_model_from(const core::JsonObject& root,
     if (!d[k].is_array() || d[k].size() != 3) root.fail("D_um_per_N", fmt::format("entry {} must be [D11, D12, D22]", k));
     std::array<double, 3> c{};
     for (std::size_t m = 0; m < 3; ++m) {
-      if (!d[k][m].is_number()) root.fail("D_um_per_N", "must contain only numbers, got " + d[k][m].dump());
+      if (!d[k][m].is_number()) root.fail("D_um_per_N", "must contain only numbers, got " + core::shown(d[k][m]));
       c[m] = d[k][m].get<double>() * 1e-6;
     }
     coefficients.push_back(c);
@@ -183,7 +180,7 @@ std::vector<std::array<double, 3>> rows_of(const core::JsonObject& obj, const ch
     std::array<double, 3> row{};
     for (std::size_t m = 0; m < width; ++m) {
       if (!a[k][m].is_number() || !std::isfinite(a[k][m].get<double>())) {
-        obj.fail(key, fmt::format("entry {} must contain only finite numbers, got {}", k, a[k][m].dump()));
+        obj.fail(key, fmt::format("entry {} must contain only finite numbers, got {}", k, core::shown(a[k][m])));
       }
       row[m] = a[k][m].get<double>() * scale;
     }
@@ -303,20 +300,11 @@ LoadedModel model_from_json(const core::JsonDocument& document) {
   } else {
     root.fail("method", "'" + method + "' is not one of bilinear, symmetric, physical, physical-spline");
   }
-  // Physics bounds the model, whatever its parameters: over its measured region (corners, edges' middles,
-  // centre) every compliance entry is finite and within ±max_compliance_um_per_N.
-  const GridBounds b = out.model->bounds();
-  for (const double fx : {0.0, 0.5, 1.0}) {
-    for (const double fy : {0.0, 0.5, 1.0}) {
-      const Vec2 p{b.x_min + fx * (b.x_max - b.x_min), b.y_min + fy * (b.y_max - b.y_min)};
-      const Mat2 c = out.model->compliance(p) * 1e6;
-      if (!c.allFinite() || c.cwiseAbs().maxCoeff() > max_compliance_um_per_N) {
-        root.fail(method == "physical" ? "D_um_per_N" : method == "physical-spline" ? "residual_spline" : "nodes",
-                  fmt::format("RANGE: the model's compliance at ({:.1f}, {:.1f}) mm is [{:g} {:g}; {:g} {:g}] um/N, beyond "
-                              "±{:g} um/N",
-                              p.x() * 1e3, p.y() * 1e3, c(0, 0), c(0, 1), c(1, 0), c(1, 1), max_compliance_um_per_N));
-      }
-    }
+  // Physics bounds the model, whatever its parameters: wherever it serves, every compliance is finite,
+  // within ±1000 um/N and positive definite (model_check.hpp).
+  if (const auto defect = find_model_defect(*out.model)) {
+    root.fail(method == "physical" ? "D_um_per_N" : method == "physical-spline" ? "residual_spline" : "nodes",
+              defect->describe());
   }
   const auto parsed = [](const core::JsonObject& obj, const char* key, auto parse) {
     const std::string text = obj.string(key);
@@ -340,7 +328,7 @@ LoadedModel model_from_json(const core::JsonDocument& document) {
 }
 
 LoadedModel load_model_file(const core::DataRef& file) {
-  return model_from_json(core::parse_json_document(core::read_data(file), file.label()));
+  return model_from_json(core::parse_json_document(core::read_data(file, core::max_json_bytes), file.label()));
 }
 
 }  // namespace stiffpath::compliance

@@ -2,6 +2,7 @@
 #include "stiffpath/core/csv.hpp"
 
 #include <charconv>
+#include <cstdint>
 #include <cmath>
 
 namespace stiffpath::core {
@@ -15,6 +16,37 @@ std::optional<double> parse_double(std::string_view text) noexcept {
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) return std::nullopt;
   return value;
+}
+
+bool valid_utf8(std::string_view text) noexcept {
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c < 0x80) {
+      ++i;
+      continue;
+    }
+    std::size_t n = 0;
+    std::uint32_t cp = 0, min = 0;
+    if ((c & 0xE0U) == 0xC0U) {
+      n = 1, cp = c & 0x1FU, min = 0x80;
+    } else if ((c & 0xF0U) == 0xE0U) {
+      n = 2, cp = c & 0x0FU, min = 0x800;
+    } else if ((c & 0xF8U) == 0xF0U) {
+      n = 3, cp = c & 0x07U, min = 0x10000;
+    } else {
+      return false;
+    }
+    if (i + n >= text.size()) return false;
+    for (std::size_t k = 1; k <= n; ++k) {
+      const auto d = static_cast<unsigned char>(text[i + k]);
+      if ((d & 0xC0U) != 0x80U) return false;
+      cp = (cp << 6U) | (d & 0x3FU);
+    }
+    if (cp < min || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return false;
+    i += n + 1;
+  }
+  return true;
 }
 
 namespace {
@@ -49,8 +81,23 @@ CsvReader::CsvReader(std::istream& in, std::string label) : in_(&in), label_(std
   refuse_duplicate_columns(header_, starts, label_, header_line_);
 }
 
+bool CsvReader::read_line() {
+  if (line_buffer_.empty()) line_buffer_.resize(max_csv_line_bytes + 2);
+  in_->getline(line_buffer_.data(), static_cast<std::streamsize>(line_buffer_.size()));
+  const auto got = static_cast<std::size_t>(in_->gcount());
+  if (in_->fail() && !in_->eof()) {  // a full buffer and no line break yet
+    throw Error(SourceLocation{label_, line_ + 1, 1},
+                "LIMIT: line longer than " + std::to_string(max_csv_line_bytes) + " bytes, the most a CSV line may hold");
+  }
+  if (got == 0 && in_->eof()) return false;
+  const bool ended_by_break = !in_->eof();  // getline counted the line break it extracted
+  buffer_.assign(line_buffer_.data(), ended_by_break ? got - 1 : got);
+  in_->clear(in_->rdstate() & ~std::ios::failbit);
+  return true;
+}
+
 bool CsvReader::read_record(std::vector<std::string>& fields, std::vector<int>& starts) {
-  while (std::getline(*in_, buffer_)) {
+  while (read_line()) {
     ++line_;
     if (!buffer_.empty() && buffer_.back() == '\r') buffer_.pop_back();
     if (buffer_.find_first_not_of(" \t") == std::string::npos || buffer_.front() == '#') continue;
@@ -131,6 +178,12 @@ void CsvReader::fail(std::size_t col, const std::string& message) const {
 std::string_view CsvReader::text(std::size_t col) const {
   if (col >= fields_.size()) fail(col, "no such column in this row");
   return fields_[col];
+}
+
+std::string_view CsvReader::name(std::size_t col) const {
+  const std::string_view cell = text(col);
+  if (!valid_utf8(cell)) fail(col, "the name is not valid UTF-8 text (names go into JSON files)");
+  return cell;
 }
 
 double CsvReader::number(std::size_t col) const {

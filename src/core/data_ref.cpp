@@ -1,9 +1,10 @@
 // Data references: resolving paths beside a robot file, built-in or on disk, and reading them.
 #include "stiffpath/core/data_ref.hpp"
 
+#include <array>
 #include <filesystem>
+#include <fmt/format.h>
 #include <fstream>
-#include <sstream>
 
 #include "stiffpath/core/embedded.hpp"
 #include "stiffpath/core/error.hpp"
@@ -29,17 +30,29 @@ DataRef parse_data_ref(const std::string& text) {
   return {text, false};
 }
 
-std::string read_data(const DataRef& ref) {
+std::string read_data(const DataRef& ref, std::size_t max_bytes) {
+  const auto too_large = [&] {
+    return Error(SourceLocation{ref.label()},
+                 fmt::format("LIMIT: larger than {} bytes, the most a file of this kind may hold", max_bytes));
+  };
   if (ref.builtin) {
     const auto text = find_embedded(ref.path);
     if (!text) throw Error(SourceLocation{ref.label()}, "no such file is built into this binary");
+    if (text->size() > max_bytes) throw too_large();
     return std::string(*text);
   }
   std::ifstream in(ref.path, std::ios::binary);
   if (!in) throw Error(SourceLocation{ref.path}, "cannot open file");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
+  std::string out;
+  std::array<char, 1 << 16> chunk{};
+  while (in) {
+    in.read(chunk.data(), chunk.size());
+    const auto got = static_cast<std::size_t>(in.gcount());
+    if (got > max_bytes - out.size()) throw too_large();
+    out.append(chunk.data(), got);
+  }
+  if (in.bad()) throw Error(SourceLocation{ref.path}, "read error");
+  return out;
 }
 
 bool data_exists(const DataRef& ref) {

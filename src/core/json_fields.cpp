@@ -2,9 +2,12 @@
 #include "stiffpath/core/json_fields.hpp"
 
 #include <cmath>
+#include <fmt/format.h>
 #include <fstream>
 #include <sstream>
 
+#include "json_walk.hpp"
+#include "stiffpath/core/data_ref.hpp"
 #include "stiffpath/core/error.hpp"
 
 namespace stiffpath::core {
@@ -30,9 +33,20 @@ SourceLocation locate(std::string_view text, std::size_t byte, const std::string
 std::string type_name(const nlohmann::json& v) { return v.type_name(); }
 }  // namespace
 
+std::string shown(const nlohmann::json& v) {
+  std::string text = v.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);  // bad UTF-8 as U+FFFD
+  if (text.size() > 80) {
+    std::size_t cut = 77;
+    while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0U) == 0x80U) --cut;  // not inside a character
+    text = text.substr(0, cut) + "...";
+  }
+  return text;
+}
+
 namespace {
 // Parses without the duplicate-key check. A number beyond double's range (1e400) is refused at its position.
 nlohmann::json parse_only(std::string_view text, const std::string& label) {
+  check_json_shape(text, label);
   try {
     return nlohmann::json::parse(text.begin(), text.end());
   } catch (const nlohmann::json::parse_error& e) {
@@ -57,30 +71,22 @@ nlohmann::json parse_only(std::string_view text, const std::string& label) {
 
 nlohmann::json parse_json(std::string_view text, const std::string& label) {
   nlohmann::json value = parse_only(text, label);
-  (void)index_json_keys(text, label);  // refuses duplicated keys
+  check_json_duplicates(text, label);
   return value;
 }
 
 nlohmann::json read_json_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(SourceLocation{path}, "cannot open file");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return parse_json(buffer.str(), path);
+  return parse_json(read_data(DataRef{path, false}, max_json_bytes), path);
 }
 
 JsonDocument parse_json_document(std::string_view text, const std::string& label) {
-  JsonDocument doc{parse_only(text, label), label, {}};
-  doc.keys = index_json_keys(text, label);
+  JsonDocument doc{parse_only(text, label), label, std::string(text)};
+  check_json_duplicates(text, label);
   return doc;
 }
 
 JsonDocument read_json_document(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(SourceLocation{path}, "cannot open file");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return parse_json_document(buffer.str(), path);
+  return parse_json_document(read_data(DataRef{path, false}, max_json_bytes), path);
 }
 
 JsonObject::JsonObject(const nlohmann::json& value, std::string context)
@@ -88,18 +94,22 @@ JsonObject::JsonObject(const nlohmann::json& value, std::string context)
   if (!value_.is_object()) throw Error(context_ + ": expected a JSON object, got " + type_name(value_));
 }
 
-JsonObject::JsonObject(const JsonDocument& document) : JsonObject(document.value, document.label, "", &document.keys) {}
+JsonObject::JsonObject(const JsonDocument& document) : JsonObject(document.value, document.label, "", &document.text) {}
 
-JsonObject::JsonObject(const nlohmann::json& value, std::string label, std::string path, const JsonKeyIndex* keys)
+JsonObject::JsonObject(const nlohmann::json& value, std::string label, std::string path, const std::string* text)
     : value_(value), context_(path.empty() ? label : label + "." + path), label_(std::move(label)),
-      path_(std::move(path)), keys_(keys) {
+      path_(std::move(path)), text_(text) {
   if (!value_.is_object()) {
-    const auto it = keys_->find(path_);
-    const SourceLocation where =
-        it == keys_->end() ? SourceLocation{label_} : SourceLocation{label_, it->second.first, it->second.second};
-    throw Error(where, (path_.empty() ? std::string("document") : path_) + ": expected a JSON object, got " +
-                           type_name(value_));
+    throw Error(where(path_), (path_.empty() ? std::string("document") : path_) + ": expected a JSON object, got " +
+                                  type_name(value_));
   }
+}
+
+SourceLocation JsonObject::where(const std::string& path) const {
+  // The root has no key of its own: what concerns it names the file alone.
+  if (path.empty()) return SourceLocation{label_};
+  const auto at = locate_json_path(*text_, path);
+  return at ? SourceLocation{label_, at->first, at->second} : SourceLocation{label_};
 }
 
 std::string JsonObject::child_path(std::string_view key) const {
@@ -109,33 +119,38 @@ std::string JsonObject::child_path(std::string_view key) const {
 bool JsonObject::has(std::string_view key) const { return value_.contains(key); }
 
 void JsonObject::fail(std::string_view key, const std::string& message) const {
-  if (!keys_) throw Error(context_ + "." + std::string(key) + ": " + message);
+  if (!text_) throw Error(context_ + "." + std::string(key) + ": " + message);
   const std::string path = child_path(key);
-  auto it = keys_->find(path);
-  if (it == keys_->end()) it = keys_->find(path_);  // a missing field: point at its object
-  const SourceLocation where =
-      it == keys_->end() ? SourceLocation{label_} : SourceLocation{label_, it->second.first, it->second.second};
-  throw Error(where, path + ": " + message);
+  // A present field at its key; a missing one at the object that lacks it.
+  SourceLocation at = where(path);
+  if (at.line == 0) at = where(path_);  // a missing field: at the object that lacks it
+  throw Error(at, path + ": " + message);
 }
 
 void JsonObject::allow_only(std::initializer_list<std::string_view> known,
                             const std::map<std::string, std::string, std::less<>>& hints) const {
-  std::string first;
-  std::pair<int, int> first_at{1 << 30, 0};
-  for (const auto& item : value_.items()) {
-    bool ok = false;
-    for (const auto k : known) ok = ok || item.key() == k;
-    if (ok) continue;
-    std::pair<int, int> at{1 << 29, 0};
-    if (keys_) {
-      if (const auto it = keys_->find(child_path(item.key())); it != keys_->end()) at = it->second;
+  const auto is_known = [&](std::string_view key) {
+    for (const auto k : known) {
+      if (key == k) return true;
     }
-    if (first.empty() || at < first_at) {
-      first = item.key();
-      first_at = at;
+    return false;
+  };
+  std::string first;
+  for (const auto& item : value_.items()) {
+    if (!is_known(item.key())) {
+      first = item.key();  // alphabetically first; the file's order decides below when the text is known
+      break;
     }
   }
   if (first.empty()) return;
+  if (text_) {
+    for (const auto& member : json_object_members(*text_, path_)) {
+      if (!is_known(member.key)) {
+        first = member.key;
+        break;
+      }
+    }
+  }
   const auto hint = hints.find(first);
   fail(first, "unknown field" + (hint == hints.end() ? std::string() : " (" + hint->second + ")"));
 }
@@ -148,35 +163,43 @@ const nlohmann::json& JsonObject::field(std::string_view key) const {
 
 double JsonObject::number(std::string_view key) const {
   const auto& v = field(key);
-  if (!v.is_number()) fail(key, "must be a number, got " + type_name(v) + " " + v.dump());
+  if (!v.is_number()) fail(key, "must be a number, got " + type_name(v) + " " + shown(v));
   const double x = v.get<double>();
   if (!std::isfinite(x)) fail(key, "must be finite");
-  if (std::abs(x) > max_json_magnitude) fail(key, "RANGE: " + v.dump() + " is beyond ±1e12, larger than any quantity a stiffpath file holds");
+  if (std::abs(x) > max_json_magnitude) fail(key, "RANGE: " + shown(v) + " is beyond ±1e12, larger than any quantity a stiffpath file holds");
   return x;
 }
 
 double JsonObject::positive(std::string_view key) const {
   const double x = number(key);
-  if (!(x > 0.0)) fail(key, "must be positive, got " + field(key).dump());
+  if (!(x > 0.0)) fail(key, "must be positive, got " + shown(field(key)));
   return x;
 }
 
 double JsonObject::non_negative(std::string_view key) const {
   const double x = number(key);
-  if (x < 0.0) fail(key, "must not be negative, got " + field(key).dump());
+  if (x < 0.0) fail(key, "must not be negative, got " + shown(field(key)));
+  return x;
+}
+
+double JsonObject::within(std::string_view key, double lo, double hi, std::string_view unit) const {
+  const double x = number(key);
+  if (!(x >= lo && x <= hi)) {
+    fail(key, fmt::format("RANGE: {} {} is outside the physical range {:g} to {:g} {}", shown(field(key)), unit, lo, hi, unit));
+  }
   return x;
 }
 
 int JsonObject::sign(std::string_view key) const {
   const auto& v = field(key);
-  if (!v.is_number() || (v.get<double>() != 1.0 && v.get<double>() != -1.0)) fail(key, "must be +1 or -1, got " + v.dump());
+  if (!v.is_number() || (v.get<double>() != 1.0 && v.get<double>() != -1.0)) fail(key, "must be +1 or -1, got " + shown(v));
   return v.get<double>() > 0 ? 1 : -1;
 }
 
 std::pair<double, double> JsonObject::pair(std::string_view key) const {
   const auto& v = field(key);
   if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number()) {
-    fail(key, "must be an array of two numbers [a, b], got " + v.dump());
+    fail(key, "must be an array of two numbers [a, b], got " + shown(v));
   }
   const double a = v[0].get<double>(), b = v[1].get<double>();
   if (!std::isfinite(a) || !std::isfinite(b)) fail(key, "must hold finite numbers");
@@ -185,14 +208,14 @@ std::pair<double, double> JsonObject::pair(std::string_view key) const {
 
 std::string JsonObject::string(std::string_view key) const {
   const auto& v = field(key);
-  if (!v.is_string()) fail(key, "must be a string, got " + type_name(v) + " " + v.dump());
+  if (!v.is_string()) fail(key, "must be a string, got " + type_name(v) + " " + shown(v));
   return v.get<std::string>();
 }
 
 JsonObject JsonObject::object(std::string_view key) const {
   const auto& v = field(key);
   if (!v.is_object()) fail(key, "must be an object, got " + type_name(v));
-  if (keys_) return JsonObject(v, label_, child_path(key), keys_);
+  if (text_) return JsonObject(v, label_, child_path(key), text_);
   return JsonObject(v, context_ + "." + std::string(key));
 }
 
@@ -207,7 +230,7 @@ JsonObject JsonObject::element(std::string_view key, std::size_t index) const {
   const std::string name = std::string(key) + "[" + std::to_string(index) + "]";
   if (index >= a.size()) fail(key, "has no element " + std::to_string(index));
   if (!a[index].is_object()) fail(name, "must be an object, got " + type_name(a[index]));
-  if (keys_) return JsonObject(a[index], label_, child_path(name), keys_);
+  if (text_) return JsonObject(a[index], label_, child_path(name), text_);
   return JsonObject(a[index], context_ + "." + name);
 }
 

@@ -81,8 +81,11 @@ JointReader::JointReader(const std::string& path) : path_(path), in_(path, std::
 // "# stiffpath joints rate_hz=… geometry_sha256=… robot=…" on the first line, if the file has it.
 void JointReader::read_csv_comment(const std::string& path) {
   std::ifstream in(path);
-  std::string line;
-  if (!std::getline(in, line) || !line.starts_with(kJointCsvComment)) return;
+  std::string line(core::max_csv_line_bytes + 1, '\0');
+  in.getline(line.data(), static_cast<std::streamsize>(line.size()));  // at most one CSV line's worth
+  line.resize(static_cast<std::size_t>(std::max<std::streamsize>(in.gcount(), 0)));
+  while (!line.empty() && (line.back() == '\0' || line.back() == '\n')) line.pop_back();
+  if (!line.starts_with(kJointCsvComment)) return;
   if (!line.empty() && line.back() == '\r') line.pop_back();
   const auto value = [&](std::string_view key) -> std::string {
     const auto at = line.find(std::string(" ") + std::string(key) + "=");
@@ -91,6 +94,16 @@ void JointReader::read_csv_comment(const std::string& path) {
     const auto to = key == "robot" ? std::string::npos : line.find(' ', from);
     return line.substr(from, to == std::string::npos ? std::string::npos : to - from);
   };
+  // The rate it announces, checked as the binary header's is (the records' spacing then gives the rate).
+  if (const auto at = line.find(" rate_hz="); at != std::string::npos) {
+    const std::string text = value("rate_hz");
+    const auto rate = core::parse_double(text);
+    if (!rate || !(*rate >= 0.1 && *rate <= 1e6)) {
+      throw Error(SourceLocation{path, 1, static_cast<int>(at + 10)},
+                  fmt::format("RANGE: rate_hz={} is not a rate within [0.1, 1e6] Hz", text));
+    }
+    rate_hz_ = *rate;
+  }
   mechanism_ = value("robot");
   geometry_hash_ = value("geometry_sha256");
   if (geometry_hash_ == "-") geometry_hash_.clear();

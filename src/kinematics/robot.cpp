@@ -9,6 +9,7 @@
 #include "stiffpath/core/embedded.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/core/sha256.hpp"
+#include "stiffpath/core/json_fields.hpp"
 #include "stiffpath/core/units.hpp"
 
 namespace stiffpath::kinematics {
@@ -100,7 +101,7 @@ Robot load_robot(const std::string& preset_or_path) {
   const std::vector<std::string> presets = preset_names();
   if (std::find(presets.begin(), presets.end(), preset_or_path) != presets.end()) {
     const core::DataRef ref{std::string(kPresetDir) + preset_or_path + ".json", true};
-    Robot robot = parse_robot(core::read_data(ref), ref);
+    Robot robot = parse_robot(core::read_data(ref, core::max_json_bytes), ref);
     robot.preset = true;
     return robot;
   }
@@ -110,7 +111,7 @@ Robot load_robot(const std::string& preset_or_path) {
     for (const auto& p : presets) known += (known.empty() ? "" : ", ") + p;
     throw Error(fmt::format("robot '{}' is neither a preset ({}) nor an existing file", preset_or_path, known));
   }
-  return parse_robot(core::read_data(ref), ref);
+  return parse_robot(core::read_data(ref, core::max_json_bytes), ref);
 }
 
 }  // namespace stiffpath::kinematics

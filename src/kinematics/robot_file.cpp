@@ -13,9 +13,25 @@
 namespace stiffpath::kinematics {
 
 namespace {
+// Physical ranges of a robot's numbers (docs/kinematics.md): a planar robot within 10 m, a platform of
+// 1 g to 1 t, drives up to 10^4 rad/s and 10^8 rad/s^2.
+constexpr double max_length_mm = 1e4;
+constexpr double min_link_mm = 1.0;
+constexpr double min_mass_kg = 1e-3, max_mass_kg = 1e3;
+constexpr double max_cg_height_mm = 1e3;
+constexpr double max_joint_velocity_rad_s = 1e4, max_joint_acceleration_rad_s2 = 1e8;
+
 Vec2 point_mm(const core::JsonObject& obj, std::string_view key) {
   const auto [x, y] = obj.pair(key);
+  if (!(std::abs(x) <= max_length_mm && std::abs(y) <= max_length_mm)) {
+    obj.fail(key, fmt::format("RANGE: [{:g}, {:g}] mm lies beyond ±{:g} mm", x, y, max_length_mm));
+  }
   return {units::mm_to_m(x), units::mm_to_m(y)};
+}
+
+double link_m(const core::JsonObject& obj, std::string_view key) {
+  (void)obj.positive(key);  // "must be positive" before the range
+  return units::mm_to_m(obj.within(key, min_link_mm, max_length_mm, "mm"));
 }
 
 JointLimit parse_joint(const core::JsonObject& j) {
@@ -28,19 +44,21 @@ JointLimit parse_joint(const core::JsonObject& j) {
   if (limit.max_rad - limit.min_rad > 2.0 * std::numbers::pi) j.fail("max_deg", "must lie within 360 deg of min_deg");
   limit.max_velocity_rad_s = j.positive("max_velocity_rad_s");
   limit.max_acceleration_rad_s2 = j.positive("max_acceleration_rad_s2");
+  (void)j.within("max_velocity_rad_s", 0.0, max_joint_velocity_rad_s, "rad/s");
+  (void)j.within("max_acceleration_rad_s2", 0.0, max_joint_acceleration_rad_s2, "rad/s^2");
   return limit;
 }
 
 FiveBarGeometry parse_geometry(const core::JsonObject& root) {
   FiveBarGeometry g;
   g.actuator_m = {point_mm(root, "left_actuator_mm"), point_mm(root, "right_actuator_mm")};
-  g.proximal_m = {units::mm_to_m(root.positive("left_proximal_mm")), units::mm_to_m(root.positive("right_proximal_mm"))};
-  g.distal_m = {units::mm_to_m(root.positive("left_distal_mm")), units::mm_to_m(root.positive("right_distal_mm"))};
+  g.proximal_m = {link_m(root, "left_proximal_mm"), link_m(root, "right_proximal_mm")};
+  g.distal_m = {link_m(root, "left_distal_mm"), link_m(root, "right_distal_mm")};
   const auto& elbows = root.array("elbows");
-  if (elbows.size() != 2) root.fail("elbows", "must be [s_left, s_right] with each +1 or -1, got " + elbows.dump());
+  if (elbows.size() != 2) root.fail("elbows", "must be [s_left, s_right] with each +1 or -1, got " + core::shown(elbows));
   for (std::size_t i = 0; i < 2; ++i) {
     if (!elbows[i].is_number() || (elbows[i].get<double>() != 1.0 && elbows[i].get<double>() != -1.0)) {
-      root.fail("elbows", "must be [s_left, s_right] with each +1 or -1, got " + elbows.dump());
+      root.fail("elbows", "must be [s_left, s_right] with each +1 or -1, got " + core::shown(elbows));
     }
     g.elbows[i] = elbows[i].get<double>() > 0 ? 1 : -1;
   }
@@ -81,6 +99,7 @@ Robot parse_robot(std::string_view text, const core::DataRef& file) {
   robot.description = root.has("description") ? root.string("description") : "";
   robot.geometry = parse_geometry(root);
   robot.moving_mass_kg = root.positive("moving_mass_kg");
+  (void)root.within("moving_mass_kg", min_mass_kg, max_mass_kg, "kg");
   if (root.has("tip_damping_ratio")) {
     robot.tip_damping_ratio = root.non_negative("tip_damping_ratio");
     if (!(robot.tip_damping_ratio < 1.0)) root.fail("tip_damping_ratio", fmt::format("must be below 1 (an underdamped mode), got {}", robot.tip_damping_ratio));
@@ -91,11 +110,13 @@ Robot parse_robot(std::string_view text, const core::DataRef& file) {
     cg.allow_only({"label", "height_above_G_mm"});
     robot.cg_label = cg.has("label") ? cg.string("label") : "G";
     robot.cg_height_m = units::mm_to_m(cg.non_negative("height_above_G_mm"));
+    (void)cg.within("height_above_G_mm", 0.0, max_cg_height_mm, "mm");
   }
   if (root.has("measurement")) {
     const core::JsonObject meas = root.object("measurement");
     meas.allow_only({"UG_mm", "UL_mm"});
     ReplicaLevers levers{units::mm_to_m(meas.positive("UG_mm")), units::mm_to_m(meas.positive("UL_mm"))};
+    (void)meas.within("UL_mm", 0.0, max_length_mm, "mm");
     if (!(levers.ug_m < levers.ul_m)) meas.fail("UG_mm", "must be shorter than UL_mm (G lies between U and L)");
     robot.replica = levers;
   }
@@ -130,6 +151,14 @@ Robot parse_robot(std::string_view text, const core::DataRef& file) {
     if (c.has("rows")) robot.compliance.rows = c.string("rows");
     if (c.has("model")) robot.compliance.model = core::resolve_beside(file, c.string("model"));
     if (c.has("method")) robot.compliance.method = c.string("method");
+    // One key per meaning: a table (fitted on load, by `method`, of its `rows`) or a fitted model.
+    if (c.has("model") && c.has("table")) {
+      c.fail("model", "give either a table (fitted when loaded) or a fitted model, not both: which one compensates "
+                      "would be ambiguous");
+    }
+    for (const char* key : {"rows", "method"}) {
+      if (c.has(key) && !c.has("table")) c.fail(key, "applies to a table, and this robot names none (compliance.table)");
+    }
     for (const auto* ref : {&robot.compliance.table, &robot.compliance.model}) {
       if (!ref->empty() && !core::data_exists(*ref)) {
         c.fail(ref == &robot.compliance.table ? "table" : "model", "no such file: " + ref->label());

@@ -76,9 +76,13 @@ Campaign load_campaign(const std::string& path) {
   Campaign campaign{path, c_kgf ? ForceUnit::kgf : ForceUnit::N, {}};
   std::map<std::tuple<std::string, int, int, int>, int> seen;  // key → line
   while (csv.next()) {
+    if (campaign.readings.size() >= core::max_table_rows) {
+      throw Error(csv.where(), fmt::format("LIMIT: more than {} readings, the most a campaign may hold",
+                                           core::max_table_rows));
+    }
     CampaignReading r;
     r.line = csv.line();
-    r.point = std::string(csv.text(c_point));
+    r.point = std::string(csv.name(c_point));
     if (r.point.empty()) csv.fail(c_point, "value is missing (empty cell)");
     r.x_m = units::mm_to_m(csv.number(c_x));
     r.y_m = units::mm_to_m(csv.number(c_y));

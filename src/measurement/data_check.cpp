@@ -156,11 +156,13 @@ DataCheckReport check_displacements(const DisplacementTable& table, const DataCh
       l.quantity = q;
       l.fit = fit_line(f, v);
       l.tolerance = is_angle(q) ? options.angle_accuracy_rad() : options.accuracy_m;
-      l.flagged = l.fit.n >= 3 && l.fit.max_residual > l.tolerance;
+      // A line through fewer than three cells fits them exactly (one cell: slope 0): nothing is checked.
       if (l.fit.n < 3) {
         rep.skipped.push_back(fmt::format("linearity: {} {} {} {}: only {} cell(s)", l.mechanism,
                                           to_string(l.direction), l.point, to_string(q), l.fit.n));
+        continue;
       }
+      l.flagged = l.fit.max_residual > l.tolerance;
       rep.linearity.push_back(l);
     }
   }

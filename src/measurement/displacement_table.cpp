@@ -37,7 +37,18 @@ double direction_y(ForceDirection d) noexcept {
 }
 
 DisplacementTable DisplacementTable::filter(const std::string& mechanism) const {
-  if (mechanism.empty()) return *this;
+  if (mechanism.empty()) {
+    const auto names = mechanisms();
+    if (names.size() > 1) {
+      std::string list;
+      for (const auto& n : names) list += (list.empty() ? "" : ", ") + (n.empty() ? std::string("(none)") : n);
+      throw Error(SourceLocation{source}, fmt::format("the table holds the rows of {} mechanisms ({}): name the one meant "
+                                                      "(compliance.rows in the robot file, or --rows); pooling them "
+                                                      "would mix two machines",
+                                                      names.size(), list));
+    }
+    return *this;
+  }
   DisplacementTable out{source, {}, sha256};
   for (const auto& row : rows) {
     if (row.mechanism == mechanism) out.rows.push_back(row);
@@ -119,11 +130,15 @@ DisplacementTable read_table(core::CsvReader& csv, const std::string& source) {
   std::set<std::tuple<std::string, int, std::string, int>> seen;
   std::map<std::tuple<std::string, int, std::string>, int> series_steps;  // steps numbered when there is no column
   while (csv.next()) {
+    if (table.rows.size() >= core::max_table_rows) {
+      throw Error(csv.where(), fmt::format("LIMIT: more than {} rows, the most a displacement table may hold",
+                                           core::max_table_rows));
+    }
     DisplacementRow row;
     row.line = csv.line();
-    if (c_mech) row.mechanism = std::string(csv.text(*c_mech));
+    if (c_mech) row.mechanism = std::string(csv.name(*c_mech));
     row.direction = parse_direction(csv, c_dir);
-    row.point = std::string(csv.text(c_point));
+    row.point = std::string(csv.name(c_point));
     if (row.point.empty()) csv.fail(c_point, "value is missing (empty cell)");
     row.x_m = units::mm_to_m(bounded(csv, c_x, max_coordinate_mm, "mm"));
     row.y_m = units::mm_to_m(bounded(csv, c_y, max_coordinate_mm, "mm"));
@@ -158,6 +173,54 @@ DisplacementTable read_table(core::CsvReader& csv, const std::string& source) {
   return table;
 }
 
+// Refuses a row that the reader above would refuse, before anything is written: a table is never
+// written that its own reader cannot read back (the row's line is that of the readings it came from).
+void check_writable(const DisplacementTable& table, const DisplacementRow& r) {
+  const SourceLocation where{table.source, r.line};
+  const std::string what = fmt::format("point {} {} step {}", r.point, to_string(r.direction), r.step);
+  const auto within = [&](const char* name, double value, double limit, const char* unit) {
+    if (!(std::abs(value) <= limit)) {
+      throw Error(where, fmt::format("RANGE: {} of {} is {:g} {}, beyond the ±{:g} {} a displacement table holds; "
+                                     "no table written",
+                                     name, what, value, unit, limit, unit));
+    }
+  };
+  const auto text = [&](const char* name, const std::string& value) {
+    if (value.find_first_of(",\"\r\n") != std::string::npos) {
+      throw Error(where, fmt::format("{} '{}' holds a comma, quote or line break, which a table cell cannot; no table "
+                                     "written",
+                                     name, value));
+    }
+  };
+  if (r.point.empty()) throw Error(where, "a row without a point name; no table written");
+  text("point", r.point);
+  text("mechanism", r.mechanism);
+  within("x", units::m_to_mm(r.x_m), max_coordinate_mm, "mm");
+  within("y", units::m_to_mm(r.y_m), max_coordinate_mm, "mm");
+  within("F", r.force_N, max_force_N, "N");
+  if (!(r.force_N > 0.0)) {
+    throw Error(where, fmt::format("the load of {} is {:g} N, not positive; no table written", what, r.force_N));
+  }
+  within("force", r.force_kgf, max_force_N / units::standard_gravity_m_s2, "kgf");
+  within("nominal force", r.nominal_force_N, max_force_N, "N");
+  const std::pair<const char*, const std::optional<double>*> lengths[] = {{"dx", &r.dx_m}, {"dy", &r.dy_m}, {"dz", &r.dz_m}};
+  for (const auto& [name, v] : lengths) {
+    if (*v) within(name, units::m_to_mm(**v), max_displacement_mm, "mm");
+  }
+  const std::pair<const char*, const std::optional<double>*> angles[] = {{"rx", &r.rx_rad}, {"ry", &r.ry_rad}};
+  for (const auto& [name, v] : angles) {
+    if (*v) within(name, units::rad_to_deg(**v), max_angle_deg, "deg");
+  }
+  if (r.spread) {
+    const auto& sd = *r.spread;
+    for (const double v : {sd.dx_m * 1e3, sd.dy_m * 1e3, sd.dz_m * 1e3, units::rad_to_deg(sd.rx_rad), units::rad_to_deg(sd.ry_rad)}) {
+      if (!(v >= 0.0 && v <= core::max_csv_magnitude)) {
+        throw Error(where, fmt::format("a reading spread of {} is {:g}, not a finite standard deviation; no table written", what, v));
+      }
+    }
+  }
+}
+
 std::string cell(const std::optional<double>& v, double factor, int decimals) {
   return v ? fmt::format("{:.{}f}", *v * factor, decimals) : std::string();
 }
@@ -174,7 +237,7 @@ DisplacementTable parse_displacement_table(const std::string& text, const std::s
 }
 
 DisplacementTable load_displacement_table(const core::DataRef& file) {
-  return parse_displacement_table(core::read_data(file), file.label());
+  return parse_displacement_table(core::read_data(file, core::max_table_bytes), file.label());
 }
 
 DisplacementTable load_displacement_table(const std::string& path) {
@@ -182,6 +245,7 @@ DisplacementTable load_displacement_table(const std::string& path) {
 }
 
 void save_displacement_table(const DisplacementTable& table, const std::string& path) {
+  for (const auto& row : table.rows) check_writable(table, row);
   core::AtomicFile file(path);
   auto& out = file.stream();
   const bool with_spread =

@@ -34,10 +34,14 @@ std::vector<PositioningTrial> read(core::CsvReader& csv) {
   std::vector<PositioningTrial> out;
   std::set<std::tuple<std::string, std::string, int, int>> seen;
   while (csv.next()) {
+    if (out.size() >= core::max_table_rows) {
+      throw Error(csv.where(), fmt::format("LIMIT: more than {} trials, the most a trials file may hold",
+                                           core::max_table_rows));
+    }
     PositioningTrial t;
     t.line = csv.line();
-    if (c_mech) t.mechanism = std::string(csv.text(*c_mech));
-    t.point = std::string(csv.text(c_point));
+    if (c_mech) t.mechanism = std::string(csv.name(*c_mech));
+    t.point = std::string(csv.name(c_point));
     if (t.point.empty()) csv.fail(c_point, "value is missing (empty cell)");
     t.x_m = units::mm_to_m(csv.number(c_x));
     t.y_m = units::mm_to_m(csv.number(c_y));
@@ -72,7 +76,7 @@ std::vector<PositioningTrial> read(core::CsvReader& csv) {
 core::DataRef thesis_repeatability() { return {"thesis/repeatability.csv", true}; }
 
 std::vector<PositioningTrial> load_trials(const core::DataRef& file) {
-  std::istringstream in{core::read_data(file)};
+  std::istringstream in{core::read_data(file, core::max_table_bytes)};
   core::CsvReader csv(in, file.label());
   return read(csv);
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <tuple>
+#include <vector>
 
 #include "stiffpath/measurement/data_check.hpp"
 
@@ -40,18 +41,38 @@ std::vector<SymmetryResult> check_symmetry(const DisplacementTable& table, const
                                            std::vector<std::string>& skipped) {
   std::map<Key, const DisplacementRow*> cells;
   for (const auto& r : table.rows) cells[Key{r.mechanism, static_cast<int>(r.direction), r.point, r.step}] = &r;
-  // Mirror point of each (mechanism, point), found by coordinates (x, −y); nullptr when there is none.
+  // Mirror point of each (mechanism, point), found by coordinates (x, −y) within 1 µm: the first such row
+  // in the table's order, or nullptr. Rows are binned by their coordinates in µm, so a point's partner
+  // is among the rows of the 3 × 3 bins around its mirror image (n log n, not n²).
+  constexpr double tolerance_m = 1e-6;
+  using Bin = std::tuple<std::string, long long, long long>;
+  const auto bin_of = [&](double v) { return std::llround(std::floor(v / tolerance_m)); };
+  std::map<Bin, std::vector<std::size_t>> bins;
+  for (std::size_t i = 0; i < table.rows.size(); ++i) {
+    const auto& p = table.rows[i];
+    bins[Bin{p.mechanism, bin_of(p.x_m), bin_of(p.y_m)}].push_back(i);
+  }
   std::map<std::pair<std::string, std::string>, const DisplacementRow*> partner_of;
   for (const auto& r : table.rows) {
     const auto key = std::make_pair(r.mechanism, r.point);
     if (partner_of.contains(key)) continue;
     const DisplacementRow* found = nullptr;
-    for (const auto& p : table.rows) {
-      if (p.mechanism == r.mechanism && std::abs(p.x_m - r.x_m) < 1e-6 && std::abs(p.y_m + r.y_m) < 1e-6) {
-        found = &p;
-        break;
+    std::size_t first = table.rows.size();
+    const long long bx = bin_of(r.x_m), by = bin_of(-r.y_m);
+    for (long long ix = bx - 1; ix <= bx + 1; ++ix) {
+      for (long long iy = by - 1; iy <= by + 1; ++iy) {
+        const auto it = bins.find(Bin{r.mechanism, ix, iy});
+        if (it == bins.end()) continue;
+        for (const std::size_t i : it->second) {
+          const auto& p = table.rows[i];
+          if (i < first && std::abs(p.x_m - r.x_m) < tolerance_m && std::abs(p.y_m + r.y_m) < tolerance_m) {
+            first = i;
+            break;  // a bin's rows are in table order
+          }
+        }
       }
     }
+    if (first < table.rows.size()) found = &table.rows[first];
     partner_of[key] = found;
     if (!found) {
       skipped.push_back(fmt::format("symmetry: {} {} has no mirror point at ({:.3f}, {:.3f}) mm", r.mechanism,

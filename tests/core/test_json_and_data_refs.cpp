@@ -21,16 +21,56 @@ const char* kDoc =
     "}\n";
 
 TEST(JsonKeys, EveryKeyAndArrayElementHasItsLineAndColumn) {
-  const JsonKeyIndex keys = index_json_keys(kDoc);
-  EXPECT_EQ(keys.at("name"), std::make_pair(2, 3));
-  EXPECT_EQ(keys.at("cg"), std::make_pair(3, 3));
-  EXPECT_EQ(keys.at("cg.label"), std::make_pair(3, 10));
-  EXPECT_EQ(keys.at("cg.h"), std::make_pair(3, 24));
-  EXPECT_EQ(keys.at("joints"), std::make_pair(4, 3));
-  EXPECT_EQ(keys.at("joints[0]"), std::make_pair(5, 5));
-  EXPECT_EQ(keys.at("joints[1].max"), std::make_pair(6, 6));
-  EXPECT_EQ(keys.at("joints[1].esc\"aped"), std::make_pair(6, 18));
-  EXPECT_EQ(keys.size(), 10U);
+  const auto at = [](std::string_view path) { return locate_json_path(kDoc, path).value(); };
+  EXPECT_EQ(at("name"), std::make_pair(2, 3));
+  EXPECT_EQ(at("cg"), std::make_pair(3, 3));
+  EXPECT_EQ(at("cg.label"), std::make_pair(3, 10));
+  EXPECT_EQ(at("cg.h"), std::make_pair(3, 24));
+  EXPECT_EQ(at("joints"), std::make_pair(4, 3));
+  EXPECT_EQ(at("joints[0]"), std::make_pair(5, 5));
+  EXPECT_EQ(at("joints[1].max"), std::make_pair(6, 6));
+  EXPECT_EQ(at("joints[1].esc\"aped"), std::make_pair(6, 18));
+  EXPECT_FALSE(locate_json_path(kDoc, "joints[2]").has_value());
+  EXPECT_FALSE(locate_json_path(kDoc, "cg.lab").has_value());  // a prefix of a key is not the key
+  EXPECT_FALSE(locate_json_path(kDoc, "max").has_value());      // nor is a key of a nested object
+
+  // The members of one object, in file order, without those of the objects inside it.
+  const auto root = json_object_members(kDoc, "");
+  ASSERT_EQ(root.size(), 3U);
+  EXPECT_EQ(root[0].key, "name");
+  EXPECT_EQ(root[2].key, "joints");
+  EXPECT_EQ(std::make_pair(root[2].line, root[2].column), std::make_pair(4, 3));
+  const auto second = json_object_members(kDoc, "joints[1]");
+  ASSERT_EQ(second.size(), 2U);
+  EXPECT_EQ(second[1].key, "esc\"aped");
+  EXPECT_EQ(std::make_pair(second[1].line, second[1].column), std::make_pair(6, 18));
+  EXPECT_TRUE(json_object_members(kDoc, "joints").empty());  // an array has no keys
+}
+
+// Depth and size are bounded before parsing, at the bracket that crosses the limit; the walk that
+// locates keys needs no recursion, so the deepest text allowed costs nothing special.
+TEST(JsonKeys, DepthAndSizeAreBoundedAndLocated) {
+  const int n = max_json_depth;
+  const std::string ok = std::string(n, '[') + std::string(n, ']');
+  EXPECT_NO_THROW((void)parse_json(ok, "ok.json"));
+  const std::string deep = "{\n  \"a\": " + std::string(n, '[') + std::string(n, ']') + "}";
+  try {
+    (void)parse_json(deep, "deep.json");
+    FAIL();
+  } catch (const Error& e) {
+    // the 65th opening bracket: "{" is the first, then column 8 holds the first "[" on line 2
+    EXPECT_EQ(std::string(e.what()), "deep.json:2:" + std::to_string(8 + n - 1) +
+                                         ": LIMIT: nested more than 64 levels deep (objects and arrays)");
+  }
+  // brackets inside strings do not count
+  EXPECT_NO_THROW((void)parse_json("{\"a\": \"" + std::string(1000, '[') + "\\\"\"}", "s.json"));
+  const std::string big(max_json_bytes + 1, ' ');
+  try {
+    (void)parse_json(big, "big.json");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("big.json: LIMIT: 8388609 bytes"), std::string::npos) << e.what();
+  }
 }
 
 TEST(JsonKeys, FieldErrorsPointAtTheKey) {

@@ -236,6 +236,40 @@ TEST(Robot, BadFilesNameTheLineAndTheField) {
             std::string::npos);
 }
 
+// Physical ranges where the values enter, and one key per meaning in the compliance section.
+TEST(Robot, ValuesBeyondPhysicalRangesAndAmbiguousKeysAreRefused) {
+  const nlohmann::json good = user_robot();
+  const auto with = [&](const char* key, const nlohmann::json& value) {
+    auto doc = good;
+    doc[key] = value;
+    return error_of(doc);
+  };
+  const std::string tiny = with("moving_mass_kg", 5e-324);
+  EXPECT_NE(tiny.find("moving_mass_kg: RANGE: "), std::string::npos) << tiny;
+  EXPECT_NE(tiny.find("e-324 kg is outside the physical range 0.001 to 1000 kg"), std::string::npos) << tiny;
+  EXPECT_NE(with("moving_mass_kg", 2000.0).find("moving_mass_kg: RANGE"), std::string::npos);
+  EXPECT_EQ(with("moving_mass_kg", 1000.0), "");  // the bounds are allowed
+  EXPECT_NE(with("cg", {{"height_above_G_mm", 1e6}}).find("cg.height_above_G_mm: RANGE: 1000000.0 mm"), std::string::npos);
+  EXPECT_EQ(with("cg", {{"height_above_G_mm", 1000}}), "");
+  EXPECT_NE(with("left_proximal_mm", 0.5).find("left_proximal_mm: RANGE: 0.5 mm"), std::string::npos);
+  EXPECT_NE(with("right_distal_mm", 2e4).find("right_distal_mm: RANGE"), std::string::npos);
+  EXPECT_NE(with("left_actuator_mm", {2e4, 0}).find("left_actuator_mm: RANGE"), std::string::npos);
+  auto fast = good;
+  fast["joints"][0]["max_velocity_rad_s"] = 1e5;
+  EXPECT_NE(error_of(fast).find("joints[0].max_velocity_rad_s: RANGE"), std::string::npos);
+
+  // table and model: which compensates would be ambiguous (the model used to win silently)
+  auto both = good;
+  both["compliance"]["model"] = "data/t.csv";
+  EXPECT_NE(error_of(both).find("compliance.model: give either a table"), std::string::npos);
+  // rows and method describe a table; without one they mean nothing
+  for (const char* key : {"rows", "method"}) {
+    auto alone = good;
+    alone["compliance"] = {{"model", "data/t.csv"}, {key, "OC"}};
+    EXPECT_NE(error_of(alone).find(std::string("compliance.") + key + ": applies to a table"), std::string::npos) << key;
+  }
+}
+
 TEST(Robot, ErrorPositionsPointAtTheKey) {
   test::TempDir dir;
   test::write_text(dir / "r.json", "{\n  \"name\": \"r\",\n  \"wheels\": 3\n}\n");

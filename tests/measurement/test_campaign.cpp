@@ -102,6 +102,34 @@ TEST(ProcessCampaign, SavedTableKeepsTheSpreadAndReloads) {
   EXPECT_NEAR(*back.rows[0].dx_m, 0.091e-3, 1e-9);
 }
 
+// A table is never written that its own reader refuses: readings the campaign reader accepts (U 5.7e10 mm away,
+// within its ±1e12) give a displacement beyond the table's ±100 mm; save names the readings' line and writes nothing.
+TEST(ProcessCampaign, ATableItsOwnReaderWouldRefuseIsNotWritten) {
+  test::TempDir dir;
+  test::write_text(dir / "c.csv", "point,x_mm,y_mm,direction,step,force_kgf,Ux_mm,Uy_mm,Uz_mm,Lx_mm,Ly_mm,Lz_mm\n"
+                                  "P,200,0,+x,0,0.11,200,0,160,200,0,0\n"
+                                  "P,200,0,+x,1,5,5.7e10,0,160,200,0,0\n"
+                                  "P,200,0,+x,2,9.92,200.3,0,160,200,0,0\n");
+  const auto table = process_campaign(load_campaign((dir / "c.csv").string()), {});
+  const auto path = (dir / "table.csv").string();
+  try {
+    save_displacement_table(table, path);
+    FAIL();
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("c.csv:3: RANGE: dx of point P +x step 1 is"), std::string::npos) << what;
+    EXPECT_NE(what.find("beyond the ±100 mm a displacement table holds; no table written"), std::string::npos) << what;
+  }
+  EXPECT_FALSE(std::filesystem::exists(path));
+  // The same readings within range are written and read back.
+  test::write_text(dir / "ok.csv", "point,x_mm,y_mm,direction,step,force_kgf,Ux_mm,Uy_mm,Uz_mm,Lx_mm,Ly_mm,Lz_mm\n"
+                                   "P,200,0,+x,0,0.11,200,0,160,200,0,0\n"
+                                   "P,200,0,+x,1,5,200.1,0,160,200,0,0\n"
+                                   "P,200,0,+x,2,9.92,200.3,0,160,200,0,0\n");
+  save_displacement_table(process_campaign(load_campaign((dir / "ok.csv").string()), {}), path);
+  EXPECT_EQ(load_displacement_table(path).rows.size(), 2U);
+}
+
 // ---- bad input: every error names file, line and column -----------------------------------------------
 
 std::string error_of(const std::string& text) {

@@ -3,6 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
+#include <random>
+
+#include "stiffpath/core/error.hpp"
 
 #include "stiffpath/measurement/data_check.hpp"
 
@@ -157,6 +161,85 @@ TEST(DataCheck, ThesisDataSet) {
   }
   // Missing cells are skipped and said so (OC +x 50 N cells garbled in the seed).
   EXPECT_FALSE(rep.skipped.empty() && rep.linearity.empty());
+}
+
+// The mirror partner of each point is the first row, in the table's order, at (x, −y) within 1 µm: the binned
+// search (n log n) finds the same partner as the plain scan over every row (the oracle here), on points placed
+// on a jittered grid where some lie just inside and some just outside the tolerance, and some have no mirror.
+TEST(DataCheck, MirrorPartnersAreTheFirstRowsWithinOneMicrometreAsAPlainScanFindsThem) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> jitter(-0.9e-6, 0.9e-6);
+  DisplacementTable t{"jittered", {}, {}};
+  int k = 0;
+  for (int i = 0; i < 12; ++i) {
+    for (int j = -6; j <= 6; ++j) {
+      if ((i * 7 + j * 3) % 11 == 0) continue;  // holes: some points lose their mirror
+      DisplacementRow r;
+      r.mechanism = (i % 5 == 0) ? "SC" : "OC";
+      r.direction = ForceDirection::plus_x;
+      r.point = "p" + std::to_string(k++);
+      r.x_m = 0.2 + 0.001 * i + jitter(rng);
+      r.y_m = 0.0005 * j + jitter(rng);
+      r.step = 1;
+      r.force_N = r.nominal_force_N = 50.0;
+      r.dx_m = 1e-5;
+      r.dy_m = 0.0;
+      t.rows.push_back(r);
+    }
+  }
+  std::vector<std::string> skipped;
+  const auto results = check_symmetry(t, DataCheckOptions{}, skipped);
+  std::map<std::pair<std::string, std::string>, std::string> expected;  // (mechanism, point) -> partner
+  for (const auto& r : t.rows) {
+    for (const auto& p : t.rows) {
+      if (p.mechanism == r.mechanism && std::abs(p.x_m - r.x_m) < 1e-6 && std::abs(p.y_m + r.y_m) < 1e-6) {
+        expected[{r.mechanism, r.point}] = p.point;
+        break;
+      }
+    }
+  }
+  int compared = 0;
+  for (const auto& s : results) {
+    ASSERT_TRUE(expected.contains({s.mechanism, s.point})) << s.point;
+    EXPECT_EQ(s.partner, (expected[{s.mechanism, s.point}])) << s.point;
+    ++compared;
+  }
+  EXPECT_GT(compared, 20);
+  std::size_t without = 0;
+  for (const auto& r : t.rows) without += !expected.contains({r.mechanism, r.point});
+  EXPECT_EQ(skipped.size(), without);  // each point without a mirror is said once
+  EXPECT_GT(without, 5U);
+}
+
+// A series of one or two cells fits any line exactly (one cell: slope 0): it is not counted as checked.
+TEST(DataCheck, SeriesOfFewerThanThreeCellsAreSkippedNotCountedAsChecked) {
+  DisplacementTable t = synthetic("OC", 1.0);
+  const std::size_t full = check_displacements(t).linearity.size();
+  // Keep only step 1 of one series (+x at x1y1).
+  std::erase_if(t.rows, [](const DisplacementRow& r) {
+    return r.point == "x1y1" && r.direction == ForceDirection::plus_x && r.step > 1;
+  });
+  const auto rep = check_displacements(t);
+  EXPECT_EQ(rep.linearity.size(), full - 5);  // its five quantities are not checked
+  for (const auto& l : rep.linearity) EXPECT_GE(l.fit.n, 3) << l.point;
+  int said = 0;
+  for (const auto& s : rep.skipped) said += s.find("x1y1") != std::string::npos && s.find("only 1 cell") != std::string::npos;
+  EXPECT_EQ(said, 5);
+}
+
+// A table of several mechanisms is never pooled: naming none is refused with the mechanisms it holds.
+TEST(DataCheck, ATableOfSeveralMechanismsIsNeverPooled) {
+  DisplacementTable t = synthetic("OC", 1.0);
+  const DisplacementTable sc = synthetic("SC", 2.0);
+  t.rows.insert(t.rows.end(), sc.rows.begin(), sc.rows.end());
+  EXPECT_EQ(t.filter("SC").rows.size(), sc.rows.size());
+  try {
+    (void)t.filter("");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("the table holds the rows of 2 mechanisms (OC, SC)"), std::string::npos);
+  }
+  EXPECT_EQ(synthetic("", 1.0).filter("").rows.size(), synthetic("", 1.0).rows.size());
 }
 
 }  // namespace

@@ -86,6 +86,25 @@ INSTANTIATE_TEST_SUITE_P(Robots, CApi,
                                            Case{"oc-gl", "thesis-oc-physical", 1.0}),
                          [](const ::testing::TestParamInfo<Case>& p) { return "case" + std::to_string(p.index); });
 
+// The malformed-input corpus's robot and model files through the C interface: NULL and the located message
+// (a model whose compliance is negated would reverse the correction; a deeply nested file once crashed the caller).
+TEST(CApiRefusals, BadRobotAndModelFilesReturnNullWithTheirMessage) {
+  const std::string bad = std::string(STIFFPATH_TEST_DATA_DIR) + "/bad/";
+  char error[1024];
+  for (const char* file : {"robot/nested_20000_objects.json", "robot/cg_height_1e6_mm.json",
+                           "robot/moving_mass_5e-324_kg.json", "robot/table_and_model.json"}) {
+    const std::string path = bad + file;
+    EXPECT_EQ(stiffpath_robot_load(path.c_str(), error, sizeof error), nullptr) << file;
+    EXPECT_NE(std::string(error).find(path + ":"), std::string::npos) << error;
+  }
+  for (const char* file : {"model/compliance_negated.json", "model/nested_20000_arrays.json"}) {
+    const std::string path = bad + file;
+    EXPECT_EQ(stiffpath_compensator_create("oc-gu", path.c_str(), nullptr, error, sizeof error), nullptr) << file;
+    EXPECT_NE(std::string(error).find(path + ":"), std::string::npos) << error;
+  }
+  EXPECT_NE(std::string(error).find("LIMIT"), std::string::npos) << error;
+}
+
 TEST(CApiKinematics, ForwardAndInverseEqualTheLibrarys) {
   stiffpath_robot* robot = stiffpath_robot_load("sc-gu", nullptr, 0);
   ASSERT_NE(robot, nullptr);

@@ -367,6 +367,24 @@ static void test_errors(const char *scratch_dir) {
     remove(path);
   }
 
+  /* A robot file nested 20 000 objects deep (120 kB): NULL and the limit, not a crash of the caller. */
+  snprintf(path, sizeof path, "%s/deep_robot.json", scratch_dir);
+  f = fopen(path, "w");
+  CHECK(f != NULL);
+  if (f) {
+    for (int k = 0; k < 20000; ++k) fputs("{\"a\":", f);
+    fputs("1", f);
+    for (int k = 0; k < 20000; ++k) fputc('}', f);
+    fclose(f);
+    CHECK(stiffpath_robot_load(path, error, sizeof error) == NULL);
+    CHECK(strstr(error, "deep_robot.json:1:321") != NULL); /* the 65th "{", 5 bytes per level */
+    CHECK(strstr(error, "LIMIT: nested more than 64 levels") != NULL);
+    CHECK(stiffpath_compensator_create(path, NULL, NULL, error, sizeof error) == NULL);
+    CHECK(stiffpath_compensator_create("oc-gu", path, NULL, error, sizeof error) == NULL);
+    CHECK(strstr(error, "LIMIT") != NULL);
+    remove(path);
+  }
+
   CHECK(stiffpath_compensator_create("oc-gu", "no-such-model", NULL, error, sizeof error) == NULL);
   CHECK(strstr(error, "no-such-model") != NULL);
   stiffpath_options o = stiffpath_default_options();

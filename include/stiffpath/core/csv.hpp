@@ -17,6 +17,18 @@ namespace stiffpath::core {
 //! Largest magnitude a CSV number may have (1e12): beyond any time, length, force or angle in our
 //! files, in their units, and small enough that sums of squares in the fits stay finite.
 inline constexpr double max_csv_magnitude = 1e12;
+//! Longest CSV line (64 KiB; our files' lines hold a few hundred bytes): a longer one is refused at
+//! its line before it is read whole.
+inline constexpr std::size_t max_csv_line_bytes = 64U << 10U;
+
+//! Most data rows a table read whole into memory may hold (displacement tables, campaigns,
+//! repeatability trials): 10^6 rows, about 0.6 GB once read; the thesis's table has 600.
+inline constexpr std::size_t max_table_rows = 1'000'000;
+//! Most bytes of such a table when it is read whole before parsing (256 MiB: 10^6 rows of 256 bytes).
+inline constexpr std::size_t max_table_bytes = 256U << 20U;
+
+//! Whether `text` is valid UTF-8 (no overlong forms, surrogates or code points beyond U+10FFFF).
+[[nodiscard]] bool valid_utf8(std::string_view text) noexcept;
 
 //! Reads a comma-separated file row by row (so files need not fit in memory). The first non-comment
 //! line is the header. Lines starting with '#' and blank lines are skipped. Fields may be quoted
@@ -42,6 +54,9 @@ class CsvReader {
   [[nodiscard]] std::size_t size() const noexcept { return fields_.size(); }
 
   [[nodiscard]] std::string_view text(std::size_t col) const;
+  //! Text that names something (a point, a mechanism): valid UTF-8, since names go into JSON
+  //! files; an error at the cell otherwise.
+  [[nodiscard]] std::string_view name(std::size_t col) const;
   //! A finite number within ±max_csv_magnitude; empty cells, NaN, inf, 1e300 and trailing garbage
   //! are errors ("file:line:column: column 'x_mm': RANGE: ...").
   [[nodiscard]] double number(std::size_t col) const;
@@ -55,6 +70,7 @@ class CsvReader {
   [[noreturn]] void fail(std::size_t col, const std::string& message) const;
 
  private:
+  bool read_line();  // into buffer_, at most max_csv_line_bytes
   bool read_record(std::vector<std::string>& fields, std::vector<int>& starts);
 
   std::unique_ptr<std::ifstream> owned_;
@@ -64,6 +80,7 @@ class CsvReader {
   std::vector<std::string> fields_;
   std::vector<int> starts_;  // 1-based character column of each field
   std::string buffer_;
+  std::vector<char> line_buffer_;  // max_csv_line_bytes + 2 bytes, for istream::getline
   int line_ = 0;
   int header_line_ = 1;  // after leading comments and blank lines
 };

@@ -1,6 +1,8 @@
 // A data file named by a robot file or on the command line: a path on disk, or a file built into the binary.
 #pragma once
 
+#include <cstddef>
+#include <limits>
 #include <string>
 
 namespace stiffpath::core {
@@ -23,8 +25,9 @@ struct DataRef {
 DataRef resolve_beside(const DataRef& base, const std::string& relative);
 //! A command-line name: "builtin:<path>" for a built-in file, anything else a path on disk.
 DataRef parse_data_ref(const std::string& text);
-//! The file's bytes; throws stiffpath::Error naming it when it cannot be read.
-std::string read_data(const DataRef& ref);
+//! The file's bytes; throws stiffpath::Error naming it when it cannot be read, or when it holds more
+//! than max_bytes (read no further than that: a device such as /dev/zero ends in the refusal).
+std::string read_data(const DataRef& ref, std::size_t max_bytes = std::numeric_limits<std::size_t>::max());
 //! Whether the file exists (built in, or a regular file on disk).
 bool data_exists(const DataRef& ref);
 

@@ -1,36 +1,53 @@
 // Reading JSON documents with errors that name the file, the line and column, and the offending field.
 #pragma once
 
+#include <cstddef>
 #include <initializer_list>
 #include <map>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 #include <utility>
+#include <vector>
+
+#include "stiffpath/core/error.hpp"
 
 namespace stiffpath::core {
 
-//! Parses JSON text; a syntax error, a number beyond double range or a key given twice in one
-//! object becomes stiffpath::Error "label:line:column: ...".
+//! What a JSON file may hold (robot, model and plate files need a few kB and six levels): larger or
+//! deeper text is refused before it is parsed, at the byte or bracket that crosses the limit.
+inline constexpr std::size_t max_json_bytes = 8U << 20U;  //!< 8 MiB
+inline constexpr int max_json_depth = 64;                 //!< nested objects and arrays
+
+//! Parses JSON text; a syntax error, a number beyond double range, a key given twice in one
+//! object, text beyond max_json_bytes or nesting beyond max_json_depth becomes stiffpath::Error
+//! "label:line:column: ...".
 nlohmann::json parse_json(std::string_view text, const std::string& label);
-//! Reads and parses a JSON file; errors name the path.
+//! Reads (at most max_json_bytes) and parses a JSON file; errors name the path.
 nlohmann::json read_json_file(const std::string& path);
 
-//! Line and column (1-based) of every object key of a JSON text, by its path: "name",
-//! "cg.label", "joints[1].min_deg" (and of every array element: "joints[1]"). The text must be
-//! valid JSON (parse it first).
-using JsonKeyIndex = std::map<std::string, std::pair<int, int>, std::less<>>;
-JsonKeyIndex index_json_keys(std::string_view text);
-//! As above, but refuses a key given twice in one object (label:line:column: DUPLICATE: ...).
-JsonKeyIndex index_json_keys(std::string_view text, const std::string& label);
+//! Line and column (1-based) of the key (or array element) at `path` in JSON text: "name",
+//! "cg.label", "joints[1].min_deg", "joints[1]"; nothing when there is no such key. The text must
+//! be valid JSON within the limits above (parse it first). One pass over the text, no recursion.
+std::optional<std::pair<int, int>> locate_json_path(std::string_view text, std::string_view path);
+//! The keys of the object at `path` ("" for the root) with their line and column, in file order.
+struct JsonMember {
+  std::string key;
+  int line = 0, column = 0;
+};
+std::vector<JsonMember> json_object_members(std::string_view text, std::string_view path);
 
-//! A parsed document with the positions of its keys, so that errors can point into the file.
+//! A value as a message shows it: its JSON text (bad UTF-8 as U+FFFD), cut after 80 characters.
+std::string shown(const nlohmann::json& v);
+
+//! A parsed document with its text, so that errors can point into the file.
 struct JsonDocument {
   nlohmann::json value;
   std::string label;  //!< file path or another name for errors
-  JsonKeyIndex keys;
+  std::string text;   //!< the text it was parsed from
 };
-//! Parses text (syntax errors as parse_json) and indexes its keys.
+//! Parses text (errors as parse_json).
 JsonDocument parse_json_document(std::string_view text, const std::string& label);
 //! Reads and parses a file into a JsonDocument.
 JsonDocument read_json_document(const std::string& path);
@@ -53,6 +70,8 @@ class JsonObject {
   [[nodiscard]] double number(std::string_view key) const;            //!< finite number
   [[nodiscard]] double positive(std::string_view key) const;          //!< finite, > 0
   [[nodiscard]] double non_negative(std::string_view key) const;      //!< finite, >= 0
+  //! A finite number within [lo, hi] (a physical range, in the key's unit), else "RANGE: …".
+  [[nodiscard]] double within(std::string_view key, double lo, double hi, std::string_view unit) const;
   [[nodiscard]] int sign(std::string_view key) const;                 //!< +1 or −1
   [[nodiscard]] std::pair<double, double> pair(std::string_view key) const;  //!< [a, b] of finite numbers
   [[nodiscard]] std::string string(std::string_view key) const;
@@ -70,14 +89,15 @@ class JsonObject {
   [[noreturn]] void fail(std::string_view key, const std::string& message) const;
 
  private:
-  JsonObject(const nlohmann::json& value, std::string label, std::string path, const JsonKeyIndex* keys);
+  JsonObject(const nlohmann::json& value, std::string label, std::string path, const std::string* text);
+  [[nodiscard]] SourceLocation where(const std::string& path) const;
   const nlohmann::json& field(std::string_view key) const;
   [[nodiscard]] std::string child_path(std::string_view key) const;
 
   const nlohmann::json& value_;
   std::string context_;               // bare mode: "<label>.<path>"
   std::string label_, path_;          // document mode
-  const JsonKeyIndex* keys_ = nullptr;
+  const std::string* text_ = nullptr;  // document mode: the text, for positions
 };
 
 }  // namespace stiffpath::core

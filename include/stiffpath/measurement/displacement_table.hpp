@@ -50,7 +50,8 @@ struct DisplacementTable {
   std::vector<DisplacementRow> rows;
   std::string sha256;   //!< of the file's bytes (empty for a table made in memory)
 
-  //! Rows of one mechanism ("OC"/"SC"); an empty name selects every row.
+  //! Rows of one mechanism ("OC"/"SC"); an empty name selects every row of a table of one mechanism,
+  //! and is refused (stiffpath::Error naming the mechanisms) for a table of several.
   [[nodiscard]] DisplacementTable filter(const std::string& mechanism) const;
   //! Distinct mechanisms present, in order of first appearance.
   [[nodiscard]] std::vector<std::string> mechanisms() const;

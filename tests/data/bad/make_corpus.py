@@ -7,6 +7,7 @@ of the tool's output. usage: make_corpus.py STIFFPATH_CLI [GROUP...]   (the CLI 
 model files that some cases start from; GROUPs, default all: tables robots model joints images plates).
 """
 import json
+import re
 import os
 import struct
 import subprocess
@@ -63,6 +64,15 @@ def tables():
     csv_case(t, "force_nan.csv", h, rows, 3, "F_N", "nan")
     csv_case(t, "dx_200_mm.csv", h, rows, 2, "dx_mm", "200")
     csv_case(t, "duplicate_column.csv", h, rows, 1, "dx_mm", None, dup=True)
+    # A point name that is not UTF-8 (fit once ended in exit 1 writing it into the model file).
+    plain = [h] + [",".join(r[n] for n in h.split(",")) for r in rows]
+    lines = list(plain)
+    lines[2] = lines[2].replace(",p1,", ",p\udcff1,")
+    text = ("\n".join(lines) + "\n").encode("utf-8", "surrogateescape")
+    write(t, "point_not_utf8.csv", text, f"3:{lines[2].index('p') + 1}", "not valid UTF-8")
+    # A line longer than a CSV line may be (64 KiB), refused at its line before it is read whole.
+    long_line = plain[1].replace(",p1,", ",p" + "1" * 70000 + ",")
+    write(t, "line_70_kB.csv", "\n".join([plain[0], long_line] + plain[2:]) + "\n", "2:1", "LIMIT: line longer than 65536")
 
     expect["campaign"] = []
     h = "point,x_mm,y_mm,direction,step,reading,force_kgf,Ux_mm,Uy_mm,Uz_mm,Lx_mm,Ly_mm,Lz_mm"
@@ -74,6 +84,11 @@ def tables():
     csv_case(t, "lz_1e13.csv", h, rows, 4, "Lz_mm", "1e13")
     csv_case(t, "force_inf.csv", h, rows, 2, "force_kgf", "inf")
     csv_case(t, "duplicate_column.csv", h, rows, 1, "Uy_mm", None, dup=True)
+    # Readings the reader accepts (within ±1e12) whose displacement no table holds: `measure` refuses to write
+    # a table its own reader would refuse, naming the readings' line.
+    lines = [h] + [",".join(r[n] for n in h.split(",")) for r in rows]
+    lines[2] = lines[2].replace("200.160", "5.7e10", 1)
+    write(t, "displacement_5.7e10_mm.csv", "\n".join(lines) + "\n", "3", "beyond the ±100 mm a displacement table holds")
 
     expect["repeatability"] = []
     h = "mechanism,point,x_mm,y_mm,trial,err_x_mm,err_y_mm"
@@ -109,15 +124,52 @@ def json_cases(reader, base_text, key, bad_number, named=None):
     write(reader, f"{key}_{bad_number.replace('-', 'minus')}.json", text, position(text, f'"{key}"'), named or bad_number)
 
 
+def depth_position(text, limit=64):
+    """line:column of the bracket that makes the nesting one deeper than `limit` (outside strings)."""
+    depth, in_string, escaped = 0, False, False
+    for at, c in enumerate(text):
+        if in_string:
+            if escaped:
+                escaped = False
+            elif c == "\\":
+                escaped = True
+            elif c == '"':
+                in_string = False
+        elif c == '"':
+            in_string = True
+        elif c in "[{":
+            depth += 1
+            if depth > limit:
+                line = text.count("\n", 0, at) + 1
+                return f"{line}:{at - (text.rfind(chr(10), 0, at) + 1) + 1}"
+        elif c in "]}":
+            depth -= 1
+    raise ValueError("not that deep")
+
+
 def robots():
     with open(os.path.join(here, "..", "..", "..", "data", "robots", "oc-gu.json")) as f:
         # Its data by their built-in names, so the copy in tests/data/bad/robot/ finds them.
-        json_cases("robot", f.read().replace('"../thesis/', '"builtin:thesis/'), "moving_mass_kg", "1e300", "RANGE: 1e+300")
+        base = f.read().replace('"../thesis/', '"builtin:thesis/')
+    json_cases("robot", base, "moving_mass_kg", "1e300", "RANGE: 1e+300")
+    # 20 000 nested objects in 120 kB (every reader and the C interface once died of it, SIGSEGV).
+    n = 20000
+    description = base[base.index('"description"'):base.index("\n", base.index('"description"'))].rstrip(",")
+    deep = base.replace(description, '"description": ' + '{"a":' * n + "1" + "}" * n, 1)
+    write("robot", "nested_20000_objects.json", deep, depth_position(deep), "LIMIT: nested more than 64 levels")
+    # Physical ranges: a CG a kilometre above G, a mass of the smallest double.
+    text = base.replace('"height_above_G_mm": 35.9', '"height_above_G_mm": 1e6', 1)
+    write("robot", "cg_height_1e6_mm.json", text, position(text, '"height_above_G_mm"'), "RANGE: 1000000.0 mm is outside the physical range")
+    text = base.replace('"moving_mass_kg": 3.6', '"moving_mass_kg": 5e-324', 1)
+    write("robot", "moving_mass_5e-324_kg.json", text, position(text, '"moving_mass_kg"'), "e-324 kg is outside the physical range")
+    # One key per meaning: a table and a model file (the model used to win silently).
+    text = base.replace('"method": "bilinear"', '"method": "bilinear",\n    "model": "builtin:models/none.json"', 1)
+    write("robot", "table_and_model.json", text, position(text, '"model"'), "not both")
 
 
 def model(cli, tmp):
     path = os.path.join(tmp, "model.json")
-    subprocess.run([cli, "fit", "-o", path], check=True, stdout=subprocess.DEVNULL)
+    subprocess.run([cli, "fit", "--method", "physical", "-o", path], check=True, stdout=subprocess.DEVNULL)
     with open(path) as f:
         text = f.read()
     json_cases("model", text, "order", "1e300", "RANGE: 1e+300")
@@ -127,6 +179,17 @@ def model(cli, tmp):
     end = text.index(",", value_at)
     bad = text[:value_at] + "1e300" + text[end:]
     write("model", "compliance_1e300.json", bad, position(bad, '"D_um_per_N"'), "RANGE: the model's compliance")
+    # Every D coefficient negated: a negative definite compliance, which would reverse the correction.
+    start = text.index("[", text.index('"D_um_per_N"'))
+    end = text.index("]\n", start)
+    block = text[start:end]
+    negated = re.sub(r"(-?)(\d[\d.eE+-]*)", lambda m: ("" if m.group(1) else "-") + m.group(2), block)
+    neg = text[:start] + negated + text[end:]
+    write("model", "compliance_negated.json", neg, position(neg, '"D_um_per_N"'), "PHYSICS: the model's compliance")
+    # 20 000 nested arrays in 40 kB (1.4 GB of memory for the key scanner, then SIGSEGV).
+    n = 20000
+    deep = text.replace('"provenance"', '"deep": ' + "[" * n + "]" * n + ',\n  "provenance"', 1)
+    write("model", "nested_20000_arrays.json", deep, depth_position(deep), "LIMIT: nested more than 64 levels")
 
 
 def joints(cli, tmp):
@@ -137,8 +200,8 @@ def joints(cli, tmp):
     csv_path, bin_path = os.path.join(tmp, "j.csv"), os.path.join(tmp, "j.bin")
     subprocess.run([cli, "run", job, "-o", csv_path], check=True, stdout=subprocess.DEVNULL)
     subprocess.run([cli, "run", job, "-o", bin_path, "--format", "bin"], check=True, stdout=subprocess.DEVNULL)
-    with open(csv_path) as f:
-        lines = f.read().split("\n")[:8]
+    with open(csv_path) as f:  # without the first line's comment (rate, robot): the cases below put their own
+        lines = [l for l in f.read().split("\n") if not l.startswith("#")][:8]
     header = lines[0].split(",")
 
     def cell(name, line, value, newtext=None):
@@ -154,12 +217,17 @@ def joints(cli, tmp):
     cell("time_backwards.csv", 4, ("t_s", "0.000000", "0"))
     cell("theta_1e300.csv", 5, ("theta1_rad", "1e300", "1e300"))
     cell("force_nan.csv", 3, ("fx_n", "nan", "nan"))
+    # The first line's rate, refused as the binary header's is.
+    for name, rate in (("rate_nan.csv", "nan"), ("rate_zero.csv", "0"), ("rate_1e300.csv", "1e300"), ("rate_fast.csv", "fast")):
+        comment = f"# stiffpath joints rate_hz={rate} geometry_sha256=- robot=oc-gu"
+        write("joints", name, comment + "\n" + "\n".join(lines) + "\n", f"1:{comment.index('rate_hz=') + 9}", f"rate_hz={rate}")
     dup = [lines[0] + ",t_s"] + [l + ",0" for l in lines[1:] if l]
     write("joints", "duplicate_column.csv", "\n".join(dup) + "\n", f"1:{len(lines[0]) + 2}", "t_s")
 
     with open(bin_path, "rb") as f:
         data = bytearray(f.read())
-    head, rec = 64, 112
+    version, rec = struct.unpack_from("<II", data, 8)  # the header says its layout (docs/compensation.md)
+    head = 64 if version == 1 else 128
 
     def record(k):  # 1-based
         return head + (k - 1) * rec
