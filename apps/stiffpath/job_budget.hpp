@@ -26,9 +26,11 @@ struct OutputEstimate {
 //! Plans `job` without sampling it (motion::measure_plan) and refuses, before anything is written, a
 //! job with more samples than `max_samples`, or whose output would not fit on the file system
 //! holding `output` (empty or "-": not checked). The refusal names the sample count, the duration,
-//! the estimated size and how to raise the cap; `noun` names the job ("plan", "job"). Returns the size.
+//! the estimated size and how to raise the cap; `noun` names the job ("plan", "job"). `extra_samples`: what filters
+//! add at the end (their delay); `rest_samples`: how long they rest at every stop (job::TaskSource restarts them
+//! there). Returns the size.
 motion::PlanSize check_job_budget(const std::string& job, const motion::PlanOptions& options, std::uint64_t max_samples,
                                   const std::string& output, const OutputEstimate& estimate, const char* noun,
-                                  std::uint64_t extra_samples = 0);
+                                  std::uint64_t extra_samples = 0, std::uint64_t rest_samples = 0);
 
 }  // namespace stiffpath::cli
