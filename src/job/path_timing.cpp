@@ -122,10 +122,11 @@ void PathTiming::take(const motion::TrajectorySample& s) {
     const motion::PlannedSegment* before = index > 0 ? segment(index - 1) : nullptr;
     if (!entered || !restarts(before, *entered)) continue;
     if (resting_ && entered->path_start_m == rest_m_) continue;  // the same stop (a dwell's end)
-    // While it stands there the laser fires only if it does on both sides (a corner inside a contour).
+    // While it stands there the laser stays on only if it is on at both sides (a corner inside a contour), and
+    // at no power: the program did not ask for the rest, so nothing is burnt while it lasts (as M4 does at rest).
     FilterSample meta;
     meta.laser_on = before && before->path.laser_on && entered->path.laser_on;
-    meta.power = meta.laser_on ? motion::power_at(entered->path, 0.0) : 0.0;
+    meta.power = 0.0;
     meta.line = entered->path.line;
     start_rest(entered->path_start_m, meta, entered->path.start_m);
   }

@@ -241,6 +241,40 @@ TEST(TaskSourcePath, DwellWithTheLaserOnFiresForItsDurationOnly) {
   for (std::size_t k = runs[0].first; k <= runs[0].second; ++k) EXPECT_LT((s[k].position_m - mm(200, 0)).norm(), 1e-9);
 }
 
+// Power stays in time with the filtered motion: with M4 it is S·min(1, v/F) at the sample's own speed, with M3 S;
+// standing at the corners of one stroke (the rests the filters add) the laser stays on at power 0.
+TEST(TaskSourcePath, PowerFollowsTheFilteredSpeed) {
+  const Vec2 corners[2] = {mm(240, -20), mm(240, 20)};
+  for (const char* mode : {"M3", "M4"}) {
+    const std::string job = std::string("G21 G90 G61\nG0 X190 Y-30\nG0 X200 Y-20\n") + mode +
+                            " S500\nG1 X240 Y-20 F6000\nG1 X240 Y20\nG1 X200 Y-20\nM5\nM2\n";
+    for (const Filters& setup : {Filters{8.0, FilterKind::none}, Filters{8.0, FilterKind::zvd}}) {
+      const auto s = reference(job, setup);
+      ASSERT_EQ(strokes(s).size(), 1u) << mode;
+      std::size_t standing[2] = {0, 0};
+      for (const auto& p : s) {
+        if (!p.laser_on) {
+          EXPECT_EQ(p.power, 0.0);
+          continue;
+        }
+        const double v = p.velocity_m_s.norm();
+        const double moving = std::string(mode) == "M4" ? 0.5 * std::min(1.0, v / 0.1) : 0.5;
+        bool near_corner = false;
+        for (int c = 0; c < 2; ++c) {
+          const double d = (p.position_m - corners[c]).norm();
+          near_corner |= d < 1e-9;
+          standing[c] += d < 1e-12 && v < 1e-12;  // at rest there, to rounding
+          if (d < 1e-12 && v < 1e-12) EXPECT_EQ(p.power, 0.0) << mode << " " << describe(setup);
+        }
+        // Within a nanometre of a corner it may count as standing (power 0) or as moving.
+        if (!near_corner || p.power != 0.0) EXPECT_NEAR(p.power, moving, 1e-12) << mode << " " << describe(setup) << " v " << v;
+      }
+      EXPECT_GT(standing[0], 0u) << mode;
+      EXPECT_GT(standing[1], 0u) << mode;
+    }
+  }
+}
+
 // The thesis's numerical acceleration is that of the filtered positions: the same points, and accelerations within
 // the central difference's error of the analytic ones.
 TEST(TaskSourcePath, NumericAccelerationDifferentiatesTheFilteredPositions) {

@@ -30,8 +30,9 @@ enum class AccelerationSource {
 //! filter moves a point off the planned path and laser and power switch exactly where the path does, when the
 //! filtered motion gets there. At every stop of the plan (exact stops, dwells) and every corner it passes at speed
 //! (G64 where nothing is blended), the motion rests for the filters' rest_samples() before it moves on, so a move
-//! is filtered on its own and a corner is never cut; a laser that fires on both sides of the stop fires while it
-//! rests, a dwell with the laser on as long as programmed.
+//! is filtered on its own and a corner is never cut. While it rests the laser stays on if it is on at both sides
+//! (one stroke through a corner) but at power 0, since the program did not ask for the rest; a dwell with the laser
+//! on fires as long as programmed.
 //! The numerical acceleration, if asked for, is then that of the filtered positions. A source without segments
 //! (samples from elsewhere) gets the planned point itself filtered (its acceleration source first), which is
 //! exact on straight strokes but not at corners or on arcs.
