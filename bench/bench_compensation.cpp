@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "stiffpath/compensation/compensator.hpp"
+#include "stiffpath/compensation/reference_filter.hpp"
 #include "task_samples.hpp"
 #include "stiffpath/compliance/model_factory.hpp"
 #include "stiffpath/compliance/physical_model.hpp"
@@ -111,4 +112,17 @@ void BM_StepThroughputGeneralRobot(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_StepThroughputGeneralRobot);
+
+// The reference filters alone: `run`'s default smoothing (two moving averages of 4 ms) on the Lissajous samples,
+// pushed one at a time as the job does (filtering the planned point itself, as for samples without a path).
+void BM_FilterChainSmooth(benchmark::State& state) {
+  const auto samples = job_samples();
+  compensation::FilterChain chain(compensation::smoothing_filters(2000.0, compensation::kDefaultSmoothing_s));
+  std::size_t k = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(chain.push(samples[k]));
+    if (++k == samples.size()) k = 0;
+  }
+}
+BENCHMARK(BM_FilterChainSmooth);
 }  // namespace

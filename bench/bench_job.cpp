@@ -13,10 +13,12 @@
 #include <vector>
 
 #include "stiffpath/compensation/compensator.hpp"
+#include "stiffpath/compensation/run_filters.hpp"
 #include "stiffpath/compliance/model_factory.hpp"
 #include "stiffpath/job/fixed_format.hpp"
 #include "stiffpath/job/job.hpp"
 #include "stiffpath/job/joint_writer.hpp"
+#include "stiffpath/job/task_source.hpp"
 #include "stiffpath/motion/trajectory_stream.hpp"
 #include "task_samples.hpp"
 
@@ -122,6 +124,50 @@ void BM_PlanJobOnly(benchmark::State& state) {
   std::filesystem::remove(job);
 }
 BENCHMARK(BM_PlanJobOnly)->Arg(2000)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
+
+// `run`'s defaults: the same job, binary output, with the reference smoothed over 8 ms (two moving averages of
+// 4 ms) before the compensation, as `stiffpath run JOB --format bin` does.
+void BM_RunJobSmoothed(benchmark::State& state) {
+  const std::string job = marking_job(static_cast<int>(state.range(0)));
+  const auto out = std::filesystem::temp_directory_path() / ("stiffpath_bench_smooth_" + std::to_string(::getpid()));
+  const auto spec = kinematics::load_robot("oc-gu");
+  const compensation::Compensator comp(spec, std::shared_ptr<const compliance::Model>(
+                                                 compliance::load_model("thesis-oc").model.release()));
+  std::uint64_t samples = 0;
+  for (auto _ : state) {
+    motion::TrajectoryStream stream(job);
+    compensation::FilterChain filters = compensation::make_run_filters(2000.0, {}, nullptr, spec.moving_mass_kg);
+    auto writer = job::make_joint_writer(job::OutputFormat::binary, out.string(), 2000.0, {spec.name, spec.geometry_hash()});
+    samples += job::run_job(stream, comp, writer.get(), job, 2000.0, job::AccelerationSource::analytic, {}, &filters).samples;
+    state.PauseTiming();
+    std::filesystem::remove(out);
+    state.ResumeTiming();
+  }
+  state.counters["samples_per_s"] = benchmark::Counter(static_cast<double>(samples), benchmark::Counter::kIsRate);
+  std::filesystem::remove(job);
+}
+BENCHMARK(BM_RunJobSmoothed)->Arg(2000)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
+
+// The compensation's input alone, on one thread: planning and `run`'s default smoothing (TaskSource), against
+// BM_PlanJobOnly (planning without filters).
+void BM_PlanAndSmoothJob(benchmark::State& state) {
+  const std::string job = marking_job(static_cast<int>(state.range(0)));
+  const double mass_kg = kinematics::load_robot("oc-gu").moving_mass_kg;
+  std::uint64_t samples = 0;
+  for (auto _ : state) {
+    motion::TrajectoryStream stream(job);
+    compensation::FilterChain filters = compensation::make_run_filters(2000.0, {}, nullptr, mass_kg);
+    job::TaskSource tasks(stream, 2000.0, job::AccelerationSource::analytic, &filters);
+    compensation::TaskSample s;
+    while (tasks.next(s)) {
+      benchmark::DoNotOptimize(s);
+      ++samples;
+    }
+  }
+  state.counters["samples_per_s"] = benchmark::Counter(static_cast<double>(samples), benchmark::Counter::kIsRate);
+  std::filesystem::remove(job);
+}
+BENCHMARK(BM_PlanAndSmoothJob)->Arg(2000)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
 
 // … and only the writer: 448 000 ready commands (the job's length) encoded and written to a file.
 void BM_WriteJoints(benchmark::State& state, job::OutputFormat format) {

@@ -125,7 +125,7 @@ void run(const RunArgs& a) {
   const auto format = job::parse_output_format(a.format);
   (void)check_job_budget(a.job, options, a.max_samples, a.output,
                          format == job::OutputFormat::csv ? joint_csv_estimate : joint_bin_estimate, "job",
-                         static_cast<std::uint64_t>(filters.delay_samples()));
+                         static_cast<std::uint64_t>(filters.delay_samples()), static_cast<std::uint64_t>(filters.rest_samples()));
   motion::TrajectoryStream stream(a.job, options);
   std::unique_ptr<job::JointWriter> writer;
   if (!a.output.empty()) {

@@ -17,9 +17,12 @@ void add_max_samples_flag(CLI::App* cmd, std::uint64_t& max_samples) {
 }
 
 motion::PlanSize check_job_budget(const std::string& job, const motion::PlanOptions& options, std::uint64_t max_samples,
-                                  const std::string& output, const OutputEstimate& estimate, const char* noun, std::uint64_t extra_samples) {
-  motion::PlanSize size = motion::measure_plan(job, options);
-  size.samples += extra_samples;  // what filters after the planner add (their delay)
+                                  const std::string& output, const OutputEstimate& estimate, const char* noun, std::uint64_t extra_samples,
+                                  std::uint64_t rest_samples) {
+  motion::PlanSize size = motion::measure_plan(job, options, rest_samples);
+  // What filters after the planner add: their delay at the end, and their rests at the stops.
+  extra_samples += size.rest_samples_added;
+  size.samples += extra_samples;
   size.duration_s += static_cast<double>(extra_samples) / options.rate_hz;
   const double bytes = static_cast<double>(size.samples) * estimate.bytes_per_sample + estimate.header_bytes;
   if (output.empty()) {  // nothing is written: only the work is bounded

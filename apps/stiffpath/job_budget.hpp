@@ -32,9 +32,10 @@ struct OutputEstimate {
 //! writes none with more than max_unwritten_samples (its work bound), or one whose output would not
 //! fit on the file system holding `output` (empty or "-": not checked). The refusal names the sample
 //! count, the duration, the estimated size and how to raise the cap; `noun` names the job ("plan",
-//! "job"). Returns the size.
+//! "job"). `extra_samples`: what filters add at the end (their delay); `rest_samples`: how long they rest at
+//! every stop (job::TaskSource restarts them there). Returns the size.
 motion::PlanSize check_job_budget(const std::string& job, const motion::PlanOptions& options, std::uint64_t max_samples,
                                   const std::string& output, const OutputEstimate& estimate, const char* noun,
-                                  std::uint64_t extra_samples = 0);
+                                  std::uint64_t extra_samples = 0, std::uint64_t rest_samples = 0);
 
 }  // namespace stiffpath::cli

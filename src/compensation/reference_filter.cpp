@@ -1,7 +1,8 @@
-// ReferenceFilter: moving average (continuous jerk) and position-following ZV/ZVD shapers on planned samples.
+// ReferenceFilter: moving average (continuous jerk, O(1) a sample) and position-following ZV/ZVD shapers.
 #include "stiffpath/compensation/reference_filter.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <numbers>
 
@@ -27,6 +28,43 @@ FilterKind parse_filter_kind(const std::string& text) {
   throw Error("reference filter must be none, smooth, zv or zvd, got '" + text + "'");
 }
 
+FilterSample point_sample(const TaskSample& s) noexcept {
+  FilterSample f;
+  f.t_s = s.t_s;
+  f.x = {s.position_m, s.velocity_m_s, s.acceleration_m_s2, s.jerk_m_s3, s.snap_m_s4, s.crackle_m_s5};
+  f.laser_on = s.laser_on;
+  f.power = s.power;
+  f.line = s.line;
+  return f;
+}
+
+TaskSample task_sample(const FilterSample& f) noexcept {
+  TaskSample s;
+  s.t_s = f.t_s;
+  s.position_m = f.x[0];
+  s.velocity_m_s = f.x[1];
+  s.acceleration_m_s2 = f.x[2];
+  s.jerk_m_s3 = f.x[3];
+  s.snap_m_s4 = f.x[4];
+  s.crackle_m_s5 = f.x[5];
+  s.laser_on = f.laser_on;
+  s.power = f.power;
+  s.line = f.line;
+  return s;
+}
+
+PlannedPoint planned_point(const TaskSample& s) noexcept {
+  return {s.position_m, s.velocity_m_s, s.acceleration_m_s2, s.jerk_m_s3};
+}
+
+namespace {
+// The sample at rest where `s` is: its rates zero.
+FilterSample at_rest(FilterSample s) noexcept {
+  for (std::size_t i = 1; i < s.x.size(); ++i) s.x[i] = Vec2::Zero();
+  return s;
+}
+}  // namespace
+
 ReferenceFilter::ReferenceFilter(double rate_hz, ReferenceFilterOptions options, FrequencyAt frequency)
     : options_(options), frequency_(std::move(frequency)) {
   if (!(rate_hz > 0.0) || !std::isfinite(rate_hz)) throw Error("reference filter: the sample rate must be positive");
@@ -42,6 +80,11 @@ ReferenceFilter::ReferenceFilter(double rate_hz, ReferenceFilterOptions options,
       }
       window_ = 2 * std::max<std::int64_t>(1, std::llround(options_.smooth_s / dt_ / 2.0));
       extra_ = window_;
+      const double W = static_cast<double>(window_) * dt_;
+      inverse_width_ = 1.0 / W;
+      sum_weight_ = dt_ / W;
+      edge_weight_ = dt_ * dt_ / 12.0 / W;
+      jerk_weight_ = dt_ * dt_ * dt_ * dt_ / 720.0 / W;
       break;
     }
     case FilterKind::zv:
@@ -65,29 +108,21 @@ ReferenceFilter::ReferenceFilter(double rate_hz, ReferenceFilterOptions options,
       break;
     }
   }
-  ring_.resize(static_cast<std::size_t>(extra_ + 2));
+  ring_.resize(std::bit_ceil(static_cast<std::uint64_t>(extra_ + 2)));
+  mask_ = ring_.size() - 1;
 }
 
-TaskSample ReferenceFilter::input(std::int64_t i) const noexcept {
-  const auto size = static_cast<std::int64_t>(ring_.size());
-  if (i >= 0 && i < count_) return ring_[static_cast<std::size_t>(i % size)];
-  TaskSample rest = i < 0 ? first_ : ring_[static_cast<std::size_t>((count_ - 1) % size)];
-  rest.t_s = t0_ + static_cast<double>(i) * dt_;
-  rest.velocity_m_s = rest.acceleration_m_s2 = rest.jerk_m_s3 = rest.snap_m_s4 = rest.crackle_m_s5 = Vec2::Zero();
-  return rest;
-}
-
-TaskSample ReferenceFilter::at(double t) const noexcept {
-  const auto n = static_cast<std::int64_t>(std::floor((t - t0_) / dt_));
-  TaskSample s = input(n);
-  const double d = t - (t0_ + static_cast<double>(n) * dt_);
-  const Vec2 j = s.jerk_m_s3, sn = s.snap_m_s4, c = s.crackle_m_s5;
-  s.position_m += d * (s.velocity_m_s + d / 2 * (s.acceleration_m_s2 + d / 3 * (j + d / 4 * (sn + d / 5 * c))));
-  s.velocity_m_s += d * (s.acceleration_m_s2 + d / 2 * (j + d / 3 * (sn + d / 4 * c)));
-  s.acceleration_m_s2 += d * (j + d / 2 * (sn + d / 3 * c));
-  s.jerk_m_s3 += d * (sn + d / 2 * c);
-  s.snap_m_s4 += d * c;
-  s.t_s = t;
+FilterSample ReferenceFilter::at(std::int64_t k, double delay_s) const noexcept {
+  const double back = delay_s / dt_;
+  const auto steps = static_cast<std::int64_t>(std::ceil(back));  // the sample at or before the instant
+  FilterSample s = input(k - steps);
+  const double d = (static_cast<double>(steps) - back) * dt_;
+  auto& x = s.x;
+  x[0] += d * (x[1] + d / 2 * (x[2] + d / 3 * (x[3] + d / 4 * (x[4] + d / 5 * x[5]))));
+  x[1] += d * (x[2] + d / 2 * (x[3] + d / 3 * (x[4] + d / 4 * x[5])));
+  x[2] += d * (x[3] + d / 2 * (x[4] + d / 3 * x[5]));
+  x[3] += d * (x[4] + d / 2 * x[5]);
+  x[4] += d * x[5];
   return s;
 }
 
@@ -99,55 +134,62 @@ double ReferenceFilter::period_s(const Vec2& p) const {
   return 1.0 / (std::max(f, options_.min_frequency_hz) * std::sqrt(1.0 - zeta * zeta));
 }
 
-TaskSample ReferenceFilter::moving_average(std::int64_t k) const noexcept {
-  const TaskSample now = input(k), then = input(k - window_);
-  const double W = static_cast<double>(window_) * dt_;
-  Vec2 sum = -0.5 * (now.position_m + then.position_m);
-  for (std::int64_t i = k - window_; i <= k; ++i) sum += input(i).position_m;
-  TaskSample out = input(k - window_ / 2);  // laser and line at the centre of the window
+FilterSample ReferenceFilter::moving_average(std::int64_t k) noexcept {
+  const FilterSample& now = input(k);
+  const FilterSample& then = input(k - window_);
+  if (k >= fresh_sum_at_) {  // summed afresh every w + 1 samples: the running sum's rounding never accumulates
+    sum_ = Vec2::Zero();
+    for (std::int64_t i = k - window_; i <= k; ++i) sum_ += input(i).x[0];
+    fresh_sum_at_ = k + window_ + 1;
+  } else {
+    sum_ += now.x[0] - input(k - window_ - 1).x[0];
+  }
+  const FilterSample& middle = input(k - window_ / 2);  // laser and line at the centre of the window
+  FilterSample out;
   out.t_s = now.t_s;
-  // Euler–Maclaurin: ∫ = h·Σ' − h²/12·(p'(b) − p'(a)) + h⁴/720·(p'''(b) − p'''(a)).
-  out.position_m = (dt_ * sum - dt_ * dt_ / 12.0 * (now.velocity_m_s - then.velocity_m_s) +
-                    std::pow(dt_, 4) / 720.0 * (now.jerk_m_s3 - then.jerk_m_s3)) / W;
-  out.velocity_m_s = (now.position_m - then.position_m) / W;
-  out.acceleration_m_s2 = (now.velocity_m_s - then.velocity_m_s) / W;
-  out.jerk_m_s3 = (now.acceleration_m_s2 - then.acceleration_m_s2) / W;
-  out.snap_m_s4 = (now.jerk_m_s3 - then.jerk_m_s3) / W;
-  out.crackle_m_s5 = (now.snap_m_s4 - then.snap_m_s4) / W;
+  out.laser_on = middle.laser_on;
+  out.power = middle.power;
+  out.line = middle.line;
+  // Euler–Maclaurin: ∫ = h·Σ' − h²/12·(x'(b) − x'(a)) + h⁴/720·(x'''(b) − x'''(a)).
+  out.x[0] = sum_weight_ * (sum_ - 0.5 * (now.x[0] + then.x[0])) - edge_weight_ * (now.x[1] - then.x[1]) +
+             jerk_weight_ * (now.x[3] - then.x[3]);
+  for (std::size_t i = 1; i < out.x.size(); ++i) out.x[i] = inverse_width_ * (now.x[i - 1] - then.x[i - 1]);
   return out;
 }
 
-TaskSample ReferenceFilter::shaped(std::int64_t k) const {
-  const TaskSample now = input(k);
+FilterSample ReferenceFilter::shaped(std::int64_t k) const {
+  const PlannedPoint& p = point_;
   const double h = dt_;
   const auto ahead = [&](double d) {
-    return now.position_m + d * (now.velocity_m_s + d / 2 * (now.acceleration_m_s2 + d / 3 * now.jerk_m_s3));
+    return p.position_m + d * (p.velocity_m_s + d / 2 * (p.acceleration_m_s2 + d / 3 * p.jerk_m_s3));
   };
-  const double g = period_s(now.position_m), g_after = period_s(ahead(h)), g_before = period_s(ahead(-h));
+  const double g = period_s(p.position_m), g_after = period_s(ahead(h)), g_before = period_s(ahead(-h));
   const double g_dot = (g_after - g_before) / (2.0 * h), g_ddot = (g_after - 2.0 * g + g_before) / (h * h);
-  TaskSample out;
+  FilterSample out;
   double centre = 0.0;
   for (std::size_t i = 0; i < shares_.size(); ++i) {
     const double A = shares_[i], c = fraction_[i];
-    const double u_dot = 1.0 - c * g_dot, u_ddot = -c * g_ddot;
-    const TaskSample x = at(now.t_s - c * g);
-    out.position_m += A * x.position_m;
-    out.velocity_m_s += A * u_dot * x.velocity_m_s;
-    out.acceleration_m_s2 += A * (u_dot * u_dot * x.acceleration_m_s2 + u_ddot * x.velocity_m_s);
-    out.jerk_m_s3 += A * (u_dot * u_dot * u_dot * x.jerk_m_s3 + 3.0 * u_dot * u_ddot * x.acceleration_m_s2);
-    out.snap_m_s4 += A * (std::pow(u_dot, 4) * x.snap_m_s4 + 6.0 * u_dot * u_dot * u_ddot * x.jerk_m_s3 +
-                          3.0 * u_ddot * u_ddot * x.acceleration_m_s2);
-    out.crackle_m_s5 += A * (std::pow(u_dot, 5) * x.crackle_m_s5 + 10.0 * std::pow(u_dot, 3) * u_ddot * x.snap_m_s4);
+    const double u1 = 1.0 - c * g_dot, u2 = -c * g_ddot;
+    const double u1_2 = u1 * u1, u1_3 = u1_2 * u1;
+    const auto& x = at(k, c * g).x;
+    out.x[0] += A * x[0];
+    out.x[1] += A * u1 * x[1];
+    out.x[2] += A * (u1_2 * x[2] + u2 * x[1]);
+    out.x[3] += A * (u1_3 * x[3] + 3.0 * u1 * u2 * x[2]);
+    out.x[4] += A * (u1_3 * u1 * x[4] + 6.0 * u1_2 * u2 * x[3] + 3.0 * u2 * u2 * x[2]);
+    out.x[5] += A * (u1_3 * u1_2 * x[5] + 10.0 * u1_3 * u2 * x[4]);
     centre += A * c * g;
   }
-  const TaskSample middle = input(k - std::llround(centre / dt_));
-  out.t_s = now.t_s;
+  const FilterSample& middle = input(k - std::llround(centre / dt_));
+  out.t_s = input(k).t_s;
   out.laser_on = middle.laser_on;
+  out.power = middle.power;
   out.line = middle.line;
   return out;
 }
 
-TaskSample ReferenceFilter::filtered(std::int64_t k) const {
+FilterSample ReferenceFilter::step() {
+  const std::int64_t k = emitted_++;
   switch (options_.kind) {
     case FilterKind::none: return input(k);
     case FilterKind::smooth: return moving_average(k);
@@ -157,38 +199,63 @@ TaskSample ReferenceFilter::filtered(std::int64_t k) const {
   return input(k);
 }
 
-std::optional<TaskSample> ReferenceFilter::push(const TaskSample& sample) {
-  if (count_ == 0) {
-    first_ = sample;
-    t0_ = sample.t_s;
-  }
-  ring_[static_cast<std::size_t>(count_ % static_cast<std::int64_t>(ring_.size()))] = sample;
+FilterSample ReferenceFilter::push(const FilterSample& sample, const PlannedPoint& point) {
+  if (count_ == 0) std::fill(ring_.begin(), ring_.end(), at_rest(sample));  // at rest before the first sample
+  ring_[static_cast<std::uint64_t>(count_) & mask_] = sample;
   ++count_;
-  return filtered(emitted_++);
+  point_ = point;
+  return step();
+}
+
+std::optional<FilterSample> ReferenceFilter::drain_sample() {
+  if (count_ == 0 || emitted_ >= count_ + extra_) return std::nullopt;
+  // The input rests at its last sample (which the ring keeps: it holds extra_ + 2 samples).
+  FilterSample rest = at_rest(input(count_ - 1));
+  rest.t_s += static_cast<double>(emitted_ - count_ + 1) * dt_;
+  if (emitted_ == count_) point_.velocity_m_s = point_.acceleration_m_s2 = point_.jerk_m_s3 = Vec2::Zero();
+  ring_[static_cast<std::uint64_t>(emitted_) & mask_] = rest;
+  return step();
+}
+
+std::optional<TaskSample> ReferenceFilter::push(const TaskSample& sample) {
+  return task_sample(push(point_sample(sample), planned_point(sample)));
 }
 
 std::optional<TaskSample> ReferenceFilter::drain() {
-  if (count_ == 0 || emitted_ >= count_ + extra_) return std::nullopt;
-  return filtered(emitted_++);
+  const auto s = drain_sample();
+  if (!s) return std::nullopt;
+  return task_sample(*s);
 }
 
-std::optional<TaskSample> FilterChain::push(const TaskSample& sample) {
-  std::optional<TaskSample> s = sample;
-  for (auto& f : filters_) s = f.push(*s);
+FilterSample FilterChain::push(const FilterSample& sample, const PlannedPoint& point) {
+  point_ = point;
+  FilterSample s = sample;
+  for (auto& f : filters_) s = f.push(s, point);
   return s;
 }
 
-std::optional<TaskSample> FilterChain::drain() {
+std::optional<FilterSample> FilterChain::drain_sample() {
+  point_.velocity_m_s = point_.acceleration_m_s2 = point_.jerk_m_s3 = Vec2::Zero();
   while (draining_ < filters_.size()) {
-    std::optional<TaskSample> s = filters_[draining_].drain();
+    std::optional<FilterSample> s = filters_[draining_].drain_sample();
     if (!s) {
       ++draining_;
       continue;
     }
-    for (std::size_t i = draining_ + 1; i < filters_.size(); ++i) s = filters_[i].push(*s);
+    for (std::size_t i = draining_ + 1; i < filters_.size(); ++i) s = filters_[i].push(*s, point_);
     return s;
   }
   return std::nullopt;
+}
+
+std::optional<TaskSample> FilterChain::push(const TaskSample& sample) {
+  return task_sample(push(point_sample(sample), planned_point(sample)));
+}
+
+std::optional<TaskSample> FilterChain::drain() {
+  const auto s = drain_sample();
+  if (!s) return std::nullopt;
+  return task_sample(*s);
 }
 
 std::int64_t FilterChain::delay_samples() const noexcept {

@@ -25,6 +25,9 @@ TrajectorySample evaluate(const PlannedSegment& segment, double t_s) noexcept {
   sample.acceleration_m_s2 = a * tangent + (v * v * k) * normal;
   sample.jerk_m_s3 = (j - v * v * v * k * k) * tangent + (3.0 * v * a * k) * normal;
   sample.path_speed_m_s = v;
+  sample.path_m = segment.path_start_m + s_m;
+  sample.path_acceleration_m_s2 = a;
+  sample.path_jerk_m_s3 = j;
   sample.power = power_at(segment.path, v);
   sample.line = segment.path.line;
   sample.segment = segment.index;

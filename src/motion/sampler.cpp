@@ -1,6 +1,7 @@
 // The fixed-rate sampler: advances through planned segments as sample times pass them.
 #include "stiffpath/motion/sampler.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <fmt/format.h>
@@ -25,16 +26,29 @@ Sampler::Sampler(SegmentSource& source, double rate_hz) : source_(source), rate_
   }
 }
 
+const SegmentHistory* Sampler::keep_segments(double seconds) {
+  keep_s_ = std::isfinite(seconds) ? std::max(seconds, 0.0) : 0.0;
+  return &history_;
+}
+
+void Sampler::take(std::optional<PlannedSegment> segment) {
+  current_ = std::move(segment);
+  if (!current_) return;
+  ++segments_;
+  current_->path_start_m = path_m_;
+  path_m_ += current_->path.length_m;
+  if (keep_s_ >= 0.0) history_.push_back(*current_);
+}
+
 std::optional<TrajectorySample> Sampler::next() {
   if (done_) return std::nullopt;
   if (!started_) {
     started_ = true;
-    current_ = source_.next();
+    take(source_.next());
     if (!current_) {
       done_ = true;
       return std::nullopt;
     }
-    ++segments_;
   }
   const double t = static_cast<double>(k_) / rate_hz_;
   while (t >= current_->end_time_s()) {
@@ -43,9 +57,10 @@ std::optional<TrajectorySample> Sampler::next() {
       done_ = true;
       break;
     }
-    current_ = std::move(following);
-    ++segments_;
+    take(std::move(following));
   }
+  // Segments that ended more than keep_s_ before this sample are no longer asked for.
+  while (history_.size() > 1 && history_.front().end_time_s() < t - keep_s_) history_.pop_front();
   ++k_;
   return evaluate(*current_, t);
 }

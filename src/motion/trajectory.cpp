@@ -5,7 +5,13 @@
 
 namespace stiffpath::motion {
 
-Trajectory::Trajectory(std::vector<PlannedSegment> segments) : segments_(std::move(segments)) {}
+Trajectory::Trajectory(std::vector<PlannedSegment> segments) : segments_(std::move(segments)) {
+  double path_m = 0.0;  // summed in the Sampler's order, so both give the same arc lengths
+  for (auto& segment : segments_) {
+    segment.path_start_m = path_m;
+    path_m += segment.path.length_m;
+  }
+}
 
 Trajectory Trajectory::plan(PathSource& source, const MotionLimits& limits, const PlannerOptions& options) {
   Planner planner(source, limits, options);

@@ -1,6 +1,11 @@
 // TrajectoryStream and plan_gcode: the motion stages chained for one program.
 #include "stiffpath/motion/trajectory_stream.hpp"
 
+#include <cmath>
+#include <optional>
+
+#include "stiffpath/motion/junction.hpp"
+
 namespace stiffpath::motion {
 
 std::unique_ptr<CornerBlender> make_blender(PathSource& source, const PlanOptions& options) {
@@ -41,12 +46,38 @@ Trajectory plan_from(GcodeReader& reader, const PlanOptions& options) {
   return Trajectory::plan(*blender, options.limits, options.planner);
 }
 
-PlanSize measure(GcodeReader& reader, const PlanOptions& options) {
+PlanSize measure(GcodeReader& reader, const PlanOptions& options, std::uint64_t rest_samples) {
   LineMerger merger(reader);
   const auto blender = make_blender(merger, options);
   Planner planner(*blender, options.limits, options.planner);
   PlanSize size;
+  std::optional<PathSegment> moved;  // the last move: a stop from here on is between two moves
+  double stop_s = -1.0;              // the stop being passed and its dwells so far (s); < 0 while moving
+  bool fires = false;                // the stop holds a dwell with the laser on
   while (auto segment = planner.next()) {
+    const bool dwell = segment->path.kind == SegmentKind::dwell;
+    // A stop: the plan rests, or (between two moves) turns a corner at speed (as job::TaskSource restarts).
+    const bool corner = moved && !dwell && stop_s < 0.0 &&
+                        turn_angle_rad(end_tangent(*moved), start_tangent(segment->path)) >
+                            options.planner.junction.corner_angle_rad;
+    if (moved && stop_s < 0.0 && (!(segment->entry_speed_m_s > 0.0) || corner)) stop_s = 0.0;
+    if (dwell) {
+      if (stop_s >= 0.0) {
+        stop_s += segment->duration_s;
+        fires = fires || segment->path.laser_on;
+      }
+    } else {
+      if (stop_s >= 0.0) {  // the stop ends: a move follows
+        ++size.stops;
+        const double rested = fires ? 0.0 : std::floor(stop_s * options.rate_hz);
+        if (static_cast<double>(rest_samples) > rested) {
+          size.rest_samples_added += rest_samples - static_cast<std::uint64_t>(rested);
+        }
+      }
+      stop_s = -1.0;
+      fires = false;
+      moved = segment->path;
+    }
     ++size.segments;
     size.duration_s = segment->end_time_s();
   }
@@ -60,14 +91,15 @@ GcodeOptions quiet(GcodeOptions options) {
 }
 }  // namespace
 
-PlanSize measure_plan(const std::filesystem::path& gcode, const PlanOptions& options) {
+PlanSize measure_plan(const std::filesystem::path& gcode, const PlanOptions& options, std::uint64_t rest_samples) {
   GcodeReader reader(gcode, quiet(options.gcode));
-  return measure(reader, options);
+  return measure(reader, options, rest_samples);
 }
 
-PlanSize measure_plan(std::istream& in, const std::string& label, const PlanOptions& options) {
+PlanSize measure_plan(std::istream& in, const std::string& label, const PlanOptions& options,
+                      std::uint64_t rest_samples) {
   GcodeReader reader(in, label, quiet(options.gcode));
-  return measure(reader, options);
+  return measure(reader, options, rest_samples);
 }
 
 Trajectory plan_gcode(const std::filesystem::path& gcode, const PlanOptions& options) {

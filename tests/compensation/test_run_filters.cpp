@@ -16,6 +16,9 @@ namespace {
 constexpr double kRate = 2000.0, kDt = 1.0 / kRate;
 const Vec2 p0{0.2, -0.05}, v0{0.3, -0.1}, a0{5.0, 2.0}, j0{-200.0, 300.0};
 
+// The moving mass of the robot whose model the shapers use (the smoothing does not use it).
+double mass_kg() { return kinematics::load_robot("oc-gu").moving_mass_kg; }
+
 // p(t) = p0 + v0·t + a0·t²/2 + j0·t³/6 from t = 0 (one jerk-limited phase).
 TaskSample cubic(double t) {
   TaskSample s;
@@ -33,7 +36,7 @@ Vec2 Q(double x) {
 }
 
 TEST(RunFilters, DefaultIsTwoMovingAveragesOfHalfTheWidth) {
-  FilterChain chain = make_run_filters(kRate, RunFilterOptions{}, nullptr, 3.6);
+  FilterChain chain = make_run_filters(kRate, RunFilterOptions{}, nullptr, mass_kg());
   const double h = 0.004;  // 8 ms in two halves
   EXPECT_EQ(chain.delay_samples(), 2 * static_cast<int>(std::lround(h * kRate)));
   for (int k = 0; k < 200; ++k) {
@@ -48,7 +51,7 @@ TEST(RunFilters, DefaultIsTwoMovingAveragesOfHalfTheWidth) {
 TEST(RunFilters, ZeroWidthAndNoShaperLeaveTheReferenceAlone) {
   RunFilterOptions o;
   o.smooth_s = 0.0;
-  FilterChain chain = make_run_filters(kRate, o, nullptr, 3.6);
+  FilterChain chain = make_run_filters(kRate, o, nullptr, mass_kg());
   EXPECT_TRUE(chain.empty());
   EXPECT_EQ(chain.delay_samples(), 0);
 }
@@ -56,13 +59,13 @@ TEST(RunFilters, ZeroWidthAndNoShaperLeaveTheReferenceAlone) {
 TEST(RunFilters, RefusesWhatRunRefuses) {
   RunFilterOptions wide;
   wide.smooth_s = 2.0;
-  EXPECT_THROW(make_run_filters(kRate, wide, nullptr, 3.6), Error);
+  EXPECT_THROW(make_run_filters(kRate, wide, nullptr, mass_kg()), Error);
   RunFilterOptions smooth_shaper;
   smooth_shaper.shaper = FilterKind::smooth;
-  EXPECT_THROW(make_run_filters(kRate, smooth_shaper, nullptr, 3.6), Error);
+  EXPECT_THROW(make_run_filters(kRate, smooth_shaper, nullptr, mass_kg()), Error);
   RunFilterOptions zv;
   zv.shaper = FilterKind::zv;
-  EXPECT_THROW(make_run_filters(kRate, zv, nullptr, 3.6), Error);  // no model
+  EXPECT_THROW(make_run_filters(kRate, zv, nullptr, mass_kg()), Error);  // no model
   const auto robot = kinematics::load_robot("oc-gu");
   std::shared_ptr<const compliance::Model> model(compliance::load_robot_model(robot).model.release());
   EXPECT_THROW(make_run_filters(kRate, zv, model, robot.moving_mass_kg), Error);  // no frequency

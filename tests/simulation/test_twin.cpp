@@ -170,18 +170,19 @@ TEST(Twin, TriangleCornerOvershootIsReducedByCompensation) {
 // The twin's "default" variant compensates as `stiffpath run` does by default: dynamic inversion of the
 // tip's spring–damper on a reference smoothed over 8 ms. Off the grid lines it must beat the thesis's
 // quasi-static method on what the dynamic terms address (path accuracy and the vibration left), and the
-// smoothing lengthens the job by its delay (two moving averages of 4 ms: 8 ms at 2 kHz).
+// smoothing lengthens the job by its delay (two moving averages of 4 ms: 8 ms at 2 kHz) and by a rest of its delay
+// and one sample (8.5 ms) at every stop, where it restarts: the triangle's two corners between its three sides.
 TEST(Twin, DefaultVariantIsDynamicAndSmoothedAndBeatsTheThesisOffTheGrid) {
   const auto robot = kinematics::load_robot("oc-gu");
   ExperimentOptions options;
   options.motions = {"triangle-off", "y-mid-2"};
   const TwinModels models = make_twin_models(robot, options);
-  for (const char* motion : {"triangle-off", "y-mid-2"}) {
+  for (const auto& [motion, corners] : {std::pair{"triangle-off", 2}, std::pair{"y-mid-2", 0}}) {
     const RunResult thesis = run_once({"oc-gu", motion, 5.0, true, "thesis"}, robot, models, options);
     const RunResult dflt = run_once({"oc-gu", motion, 5.0, true, "default"}, robot, models, options);
     EXPECT_LT(dflt.metrics.path_accuracy_m, 0.8 * thesis.metrics.path_accuracy_m) << motion;
     EXPECT_LT(dflt.metrics.residual_vibration_m, thesis.metrics.residual_vibration_m) << motion;
-    EXPECT_NEAR(dflt.duration_s - thesis.duration_s, 0.008, 0.0011) << motion;
+    EXPECT_NEAR(dflt.duration_s - thesis.duration_s, 0.008 + corners * 0.0085, 0.0011) << motion;
     std::printf("%s 5g: AT_p thesis %.1f um, default %.1f um; residual %.1f → %.1f um\n", motion,
                 thesis.metrics.path_accuracy_m * 1e6, dflt.metrics.path_accuracy_m * 1e6,
                 thesis.metrics.residual_vibration_m * 1e6, dflt.metrics.residual_vibration_m * 1e6);

@@ -26,6 +26,9 @@ struct PlannedSegment {
   double profile_offset_m = 0.0;  //!< profile arc length at which this segment starts (m)
   double entry_speed_m_s = 0.0;   //!< path speed at the start (m/s)
   double exit_speed_m_s = 0.0;    //!< path speed at the end (m/s)
+  //! Arc length along the program's whole path where this segment starts (m): the lengths of the segments
+  //! before it, summed in order (set by the Sampler and by Trajectory as they take the segments).
+  double path_start_m = 0.0;
   std::size_t index = 0;        //!< 0-based position in the planned program
   //! The rule that bounds the speed where its profile starts / ends, when the profile's speed there
   //! is that rule's bound (a valley of the speed); none when the speed there is set by braking or
@@ -44,6 +47,9 @@ struct TrajectorySample {
   Vec2 acceleration_m_s2 = Vec2::Zero();  //!< analytic, centripetal part included (m/s²)
   Vec2 jerk_m_s3 = Vec2::Zero();          //!< analytic (m/s³)
   double path_speed_m_s = 0.0;            //!< speed along the path (m/s), ≥ 0
+  double path_m = 0.0;                    //!< arc length along the program's path (m): path_start_m + s
+  double path_acceleration_m_s2 = 0.0;    //!< tangential acceleration: the profile's d²s/dt² (m/s²)
+  double path_jerk_m_s3 = 0.0;            //!< the profile's d³s/dt³ (m/s³)
   double power = 0.0;                     //!< laser power, fraction of full power 0..1 (0 when off; M4 scaled by speed)
   int line = 0;                           //!< source G-code line of the segment
   std::size_t segment = 0;                //!< index of the planned segment

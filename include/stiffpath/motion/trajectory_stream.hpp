@@ -44,6 +44,8 @@ class TrajectoryStream final : public SampleSource {
   TrajectoryStream& operator=(const TrajectoryStream&) = delete;
 
   std::optional<TrajectorySample> next() override;
+  //! The sampler's planned segments (SampleSource::keep_segments).
+  const SegmentHistory* keep_segments(double seconds) override { return sampler_->keep_segments(seconds); }
   [[nodiscard]] std::uint64_t samples() const noexcept { return sampler_->count(); }
   [[nodiscard]] std::uint64_t segments() const noexcept { return sampler_->segments(); }
   [[nodiscard]] const PlannerStatistics& planner_statistics() const noexcept { return planner_->statistics(); }
@@ -69,14 +71,21 @@ struct PlanSize {
   std::uint64_t segments = 0;  //!< planned segments (the sampler's count)
   double duration_s = 0.0;     //!< end of the last segment (s)
   std::uint64_t samples = 0;   //!< what a TrajectoryStream with the same options hands out
+  //! Stops between two moves: where the plan rests (exact stops, dwells) or turns a corner at speed.
+  std::uint64_t stops = 0;
+  //! What resting `rest_samples` at every stop adds (see measure_plan): at most Σ max(0, rest_samples − ⌊d·rate⌋)
+  //! over the stops, d a stop's duration (its dwells; 0 for a dwell with the laser on, which rests that much more).
+  std::uint64_t rest_samples_added = 0;
 };
 
 //! Reads and plans the whole program without sampling it (flat memory, time proportional to the
 //! number of segments, not to the duration) and returns its size, so a caller can refuse a job
 //! before writing anything. Throws the program's refusals (GcodeErrors) like the stream does;
-//! options.gcode.on_warnings is not called.
-PlanSize measure_plan(const std::filesystem::path& gcode, const PlanOptions& options = {});
-PlanSize measure_plan(std::istream& in, const std::string& label, const PlanOptions& options = {});
+//! options.gcode.on_warnings is not called. `rest_samples`: how long a consumer rests at every stop between
+//! two moves (a reference filter restarted there, job::TaskSource), counted in rest_samples_added.
+PlanSize measure_plan(const std::filesystem::path& gcode, const PlanOptions& options = {}, std::uint64_t rest_samples = 0);
+PlanSize measure_plan(std::istream& in, const std::string& label, const PlanOptions& options = {},
+                      std::uint64_t rest_samples = 0);
 
 //! Reads and plans a whole program into memory (for evaluation at any time).
 Trajectory plan_gcode(const std::filesystem::path& gcode, const PlanOptions& options = {});
