@@ -58,6 +58,7 @@ void run(const SimulateOptions& o) {
   v.noise_sigma_m = units::um_to_m(o.noise_sigma_um);
   v.seed = o.seed;
   v.g_height_m = units::mm_to_m(o.g_height_mm);
+  v.step0_kgf = measurement::step0_load_kgf(table);  // the table's own step 0, no hook it does not name
   const auto campaign = measurement::simulate_campaign(table, v);
   if (!o.truth_output.empty()) measurement::save_displacement_table(table, o.truth_output);
   measurement::save_campaign(campaign, o.output);

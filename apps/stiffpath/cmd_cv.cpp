@@ -21,8 +21,8 @@ struct CvOptions {
   bool json = false;
 };
 
-nlohmann::json to_json(const compliance::CvReport& r, const std::string& favoured,
-                       const std::vector<std::pair<std::string, double>>& scores) {
+nlohmann::json to_json(const compliance::CvReport& r, compliance::FitMethod favoured,
+                       const std::vector<std::pair<compliance::FitMethod, double>>& scores) {
   nlohmann::json methods = nlohmann::json::array();
   for (const auto& m : r.methods) {
     nlohmann::json points = nlohmann::json::array();
@@ -38,7 +38,7 @@ nlohmann::json to_json(const compliance::CvReport& r, const std::string& favoure
     for (const auto& [name, score] : scores) {
       if (name == m.method) common = score;
     }
-    methods.push_back({{"method", m.method},
+    methods.push_back({{"method", core::enum_name(m.method)},
                        {"description", m.description},
                        {"predicted_points", m.predicted},
                        {"mean_error_um", tidy(m.mean_um)},
@@ -48,14 +48,14 @@ nlohmann::json to_json(const compliance::CvReport& r, const std::string& favoure
                        {"points", points}});
   }
   nlohmann::json skipped = nlohmann::json::array();
-  for (const auto& s : r.skipped) skipped.push_back({{"method", s.method}, {"reason", s.reason}});
+  for (const auto& s : r.skipped) skipped.push_back({{"method", core::enum_name(s.method)}, {"reason", s.reason}});
   return {{"source", r.source},
           {"rows", r.rows},
           {"robot", r.robot},
-          {"force_convention", compliance::to_string(r.convention)},
-          {"zero_force", compliance::to_string(r.zero_force)},
+          {"force_convention", core::enum_name(r.convention)},
+          {"zero_force", core::enum_name(r.zero_force)},
           {"error_definition", "mean of |dx error| and |dy error| over the highest load step of each load direction"},
-          {"favoured_method", favoured},
+          {"favoured_method", core::enum_name(favoured)},
           {"methods", methods},
           {"could_not_run", skipped}};
 }
@@ -69,14 +69,14 @@ void run(const CvOptions& o) {
   const std::string rows_name = o.rows_given ? o.rows : robot.compliance.rows;
   const auto rows = table.filter(rows_name);
   if (rows.rows.empty()) throw Error(SourceLocation{table.source}, "no rows with mechanism '" + rows_name + "'");
-  const auto convention = compliance::parse_force_convention(o.forces);
+  const auto convention = core::parse_enum<compliance::ForceConvention>(o.forces);
   auto report = compliance::cross_validate(compliance::group_by_point(rows, convention), robot.geometry, table.source,
-                                           compliance::parse_zero_force(o.zero_force));
+                                           core::parse_enum<compliance::ZeroForce>(o.zero_force));
   report.rows = rows_name;
   report.robot = robot.name;
   report.convention = convention;
-  std::vector<std::pair<std::string, double>> scores;
-  const std::string favoured = compliance::favoured_method(report, &scores);
+  std::vector<std::pair<compliance::FitMethod, double>> scores;
+  const compliance::FitMethod favoured = compliance::favoured_method(report, &scores);
   if (o.json) {
     print_json(to_json(report, favoured, scores));
     return;
@@ -87,17 +87,17 @@ void run(const CvOptions& o) {
              "common points");
   for (std::size_t k = 0; k < report.methods.size(); ++k) {
     const auto& m = report.methods[k];
-    fmt::print("{:<16} {:>9.1f} {:>14.1f} {:>10.1f} {:>8} {:>14.1f}\n", m.method, m.interior_mean_um, m.mean_um,
+    fmt::print("{:<16} {:>9.1f} {:>14.1f} {:>10.1f} {:>8} {:>14.1f}\n", core::enum_name(m.method), m.interior_mean_um, m.mean_um,
                m.max_um, m.predicted, scores[k].second);
   }
-  for (const auto& s : report.skipped) fmt::print("{:<16} could not run: {}\n", s.method, s.reason);
+  for (const auto& s : report.skipped) fmt::print("{:<16} could not run: {}\n", core::enum_name(s.method), s.reason);
   const auto& named = robot.compliance;
   const std::string note = !named.model.empty()    ? fmt::format("; robot {} names its model file {}", robot.name, named.model.label())
-                           : !named.method.empty() ? fmt::format("; robot {} names the method {} in its file", robot.name, named.method)
+                           : named.method ? fmt::format("; robot {} names the method {} in its file", robot.name, core::enum_name(*named.method))
                                                    : fmt::format("; robot {} uses it", robot.name);
   fmt::print("interior = points strictly inside the points' bounding rectangle; common points = those every method "
              "predicts\nfavoured: {} (what fit chooses without --method{})\n",
-             favoured, note);
+             core::enum_name(favoured), note);
 }
 }  // namespace
 

@@ -9,24 +9,6 @@
 
 namespace stiffpath::compensation {
 
-const char* to_string(FilterKind kind) noexcept {
-  switch (kind) {
-    case FilterKind::none: return "none";
-    case FilterKind::smooth: return "smooth";
-    case FilterKind::zv: return "zv";
-    case FilterKind::zvd: return "zvd";
-  }
-  return "unknown";
-}
-
-FilterKind parse_filter_kind(const std::string& text) {
-  if (text == "none") return FilterKind::none;
-  if (text == "smooth") return FilterKind::smooth;
-  if (text == "zv") return FilterKind::zv;
-  if (text == "zvd") return FilterKind::zvd;
-  throw Error("reference filter must be none, smooth, zv or zvd, got '" + text + "'");
-}
-
 ReferenceFilter::ReferenceFilter(double rate_hz, ReferenceFilterOptions options, FrequencyAt frequency)
     : options_(options), frequency_(std::move(frequency)) {
   if (!(rate_hz > 0.0) || !std::isfinite(rate_hz)) throw Error("reference filter: the sample rate must be positive");

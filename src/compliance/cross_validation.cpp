@@ -37,7 +37,7 @@ std::vector<const PointSample*> reference_samples(const PointSamples& point) {
   return out;
 }
 
-CvMethod evaluate(const std::string& name, const std::string& description, const std::vector<PointSamples>& points,
+CvMethod evaluate(FitMethod name, const std::string& description, const std::vector<PointSamples>& points,
                   const std::vector<bool>& interior, ZeroForce zero_force, const Predictor& predict) {
   CvMethod m{name, description, {}, 0, 0.0, 0.0, 0.0};
   double sum = 0.0, interior_sum = 0.0;
@@ -137,7 +137,7 @@ CvReport cross_validate(const std::vector<PointSamples>& points, const kinematic
   try {
     grid = Grid::from_positions(positions, node_of, source);
   } catch (const Error& e) {
-    for (const char* m : {"bilinear", "symmetric"}) {
+    for (const FitMethod m : {FitMethod::bilinear, FitMethod::symmetric}) {
       report.skipped.push_back({m, std::string("needs a full rectangular grid: ") + e.message()});
     }
   }
@@ -152,21 +152,21 @@ CvReport cross_validate(const std::vector<PointSamples>& points, const kinematic
       }
     } catch (const Error& e) {
       grid.reset();
-      for (const char* m : {"bilinear", "symmetric"}) report.skipped.push_back({m, e.message()});
+      for (const FitMethod m : {FitMethod::bilinear, FitMethod::symmetric}) report.skipped.push_back({m, e.message()});
     }
   }
   if (grid) {
-    report.methods.push_back(evaluate("bilinear", "thesis eqs. 4.8-4.12: per-point fits, bilinear between points",
+    report.methods.push_back(evaluate(FitMethod::bilinear, "thesis eqs. 4.8-4.12: per-point fits, bilinear between points",
                                       points, interior, zero_force, [&](std::size_t k) {
                                         return from_neighbours(*grid, bilinear, node_of[k]);
                                       }));
-    report.methods.push_back(evaluate("symmetric", "per-point fit with C = C^T > 0 (reciprocity), bilinear between",
+    report.methods.push_back(evaluate(FitMethod::symmetric, "per-point fit with C = C^T > 0 (reciprocity), bilinear between",
                                       points, interior, zero_force, [&](std::size_t k) {
                                         return from_neighbours(*grid, symmetric, node_of[k]);
                                       }));
   }
   // The model-based methods: refitted on every point but k, asked at k (extrapolating beyond the rest).
-  const auto refit_method = [&](const std::string& name, const std::string& description, auto fit) {
+  const auto refit_method = [&](FitMethod name, const std::string& description, auto fit) {
     try {
       report.methods.push_back(evaluate(name, description, points, interior, zero_force, [&](std::size_t k) {
         std::vector<PointSamples> rest;
@@ -182,23 +182,23 @@ CvReport cross_validate(const std::vector<PointSamples>& points, const kinematic
     }
   };
   for (int order = 0; order <= 2; ++order) {
-    refit_method(order == 1 ? "physical" : "physical-" + std::to_string(order),
+    refit_method(order == 0 ? FitMethod::physical_0 : order == 1 ? FitMethod::physical : FitMethod::physical_2,
                  "five-bar statics C = U^-T D(p) U^-1, D polynomial of order " + std::to_string(order),
                  [&](const std::vector<PointSamples>& rest) { return fit_physical_model(rest, geometry, order, source); });
   }
-  refit_method("physical-spline", "physical (order 1) + thin-plate smoothing spline of its residual at the points",
+  refit_method(FitMethod::physical_spline, "physical (order 1) + thin-plate smoothing spline of its residual at the points",
                [&](const std::vector<PointSamples>& rest) { return fit_physical_spline_model(rest, geometry, source, false); });
   return report;
 }
 
-std::string favoured_method(const CvReport& report, std::vector<std::pair<std::string, double>>* scores) {
+FitMethod favoured_method(const CvReport& report, std::vector<std::pair<FitMethod, double>>* scores) {
   if (report.methods.empty()) throw Error(SourceLocation{report.source}, "no compliance method can run on these points");
   // The points every method predicted.
   std::vector<bool> common(report.methods.front().points.size(), true);
   for (const auto& m : report.methods) {
     for (std::size_t k = 0; k < m.points.size() && k < common.size(); ++k) common[k] = common[k] && m.points[k].predicted;
   }
-  std::string best;
+  std::optional<FitMethod> best;
   double best_score = 0.0;
   for (const auto& m : report.methods) {
     double sum = 0.0;
@@ -211,12 +211,12 @@ std::string favoured_method(const CvReport& report, std::vector<std::pair<std::s
     }
     const double score = n > 0 ? sum / n : std::numeric_limits<double>::infinity();
     if (scores) scores->emplace_back(m.method, score);
-    if (best.empty() || score < best_score) {
+    if (!best || score < best_score) {
       best = m.method;
       best_score = score;
     }
   }
-  return best;
+  return *best;
 }
 
 }  // namespace stiffpath::compliance

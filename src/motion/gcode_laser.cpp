@@ -16,7 +16,7 @@ const char* const output_message = "M62/M63 (synchronised digital output) are re
 
 void GcodeInterpreter::set_laser(const GcodeBlock& b) {
   const int code = b.laser != nullptr ? code_tenths(b.laser->value) : -1;
-  if (b.s != nullptr) {
+  if (b.s != nullptr && b.acceleration == nullptr) {  // with M204 the S word is its acceleration
     if (b.s->value < 0.0) b.fail(*b.s, "laser power must not be negative");
     const double full = code == 1060 ? fan_s_max : options_.s_max;
     if (b.s->value > full) {

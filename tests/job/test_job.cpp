@@ -34,7 +34,8 @@ std::string hatch(int lines, int at = -1, const std::string& extra = "") {
 
 Compensator compensator() {
   return Compensator(kinematics::load_robot("oc-gu"),
-                     std::shared_ptr<const compliance::Model>(compliance::load_model("thesis-oc").model.release()));
+                     std::shared_ptr<const compliance::Model>(compliance::load_model("thesis-oc").model.release()),
+                     {.method = Method::quasi_static});
 }
 
 std::string read_bytes(const std::filesystem::path& path) {

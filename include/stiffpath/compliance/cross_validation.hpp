@@ -33,7 +33,7 @@ struct CvPoint {
 };
 
 struct CvMethod {
-  std::string method;              //!< "bilinear", "symmetric", "physical-0", "physical", "physical-2"
+  FitMethod method = FitMethod::bilinear;
   std::string description;
   std::vector<CvPoint> points;
   int predicted = 0;
@@ -44,7 +44,7 @@ struct CvMethod {
 
 //! A method that could not run on these points, and why.
 struct CvSkipped {
-  std::string method;
+  FitMethod method = FitMethod::bilinear;
   std::string reason;
 };
 
@@ -68,6 +68,6 @@ CvReport cross_validate(const std::vector<PointSamples>& points, const kinematic
 
 //! The method with the smallest mean error over the points every method in the report predicted
 //! (ties: the first listed), and that mean for each method (µm) in `scores`.
-std::string favoured_method(const CvReport& report, std::vector<std::pair<std::string, double>>* scores = nullptr);
+FitMethod favoured_method(const CvReport& report, std::vector<std::pair<FitMethod, double>>* scores = nullptr);
 
 }  // namespace stiffpath::compliance

@@ -7,6 +7,7 @@
 
 #include "stiffpath/compensation/compensator.hpp"
 #include "stiffpath/compensation/reference_filter.hpp"
+#include "stiffpath/core/error.hpp"
 #include "stiffpath/job/joint_writer.hpp"
 #include "stiffpath/job/task_source.hpp"
 #include "stiffpath/motion/sampler.hpp"
@@ -15,8 +16,6 @@ namespace stiffpath::job {
 
 using compensation::JointCommand;
 using compensation::TaskSample;
-
-AccelerationSource parse_acceleration_source(const std::string& text);  //!< "analytic" | "numeric"
 
 //! What a finished job reports.
 struct JobSummary {
@@ -47,7 +46,18 @@ JobSummary run_job(motion::SampleSource& source, const compensation::Compensator
                    AccelerationSource acceleration = AccelerationSource::analytic, const Progress& progress = {},
                    compensation::FilterChain* filters = nullptr);
 
-//! Throws the stiffpath::Error for a refused command `c` (status not ok): "<job>:<line>: t = … s:
+//! A sample the compensator refused: a stiffpath::Error located at its G-code line, with the step's status.
+class Refusal : public Error {
+ public:
+  Refusal(const SourceLocation& where, const std::string& message, compensation::Status status)
+      : Error(where, message), status_(status) {}
+  [[nodiscard]] compensation::Status status() const noexcept { return status_; }
+
+ private:
+  compensation::Status status_;
+};
+
+//! Throws the Refusal for a refused command `c` (status not ok): "<job>:<line>: t = … s:
 //! <quantity> <value> against <limit>", the message run_job gives, for other loops over step().
 [[noreturn]] void throw_refusal(const JointCommand& c, const compensation::Compensator& compensator, const std::string& job_label);
 

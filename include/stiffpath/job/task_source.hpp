@@ -3,6 +3,7 @@
 
 #include "stiffpath/compensation/numeric_acceleration.hpp"
 #include "stiffpath/compensation/reference_filter.hpp"
+#include "stiffpath/core/enum_names.hpp"
 #include "stiffpath/motion/sampler.hpp"
 
 namespace stiffpath::job {
@@ -36,3 +37,11 @@ class TaskSource {
 };
 
 }  // namespace stiffpath::job
+
+//! Names at the edges: "analytic", "numeric".
+template <>
+struct stiffpath::core::EnumNames<stiffpath::job::AccelerationSource> {
+  static constexpr std::string_view what = "acceleration source";
+  static constexpr std::array<std::pair<job::AccelerationSource, std::string_view>, 2> names{
+      {{job::AccelerationSource::analytic, "analytic"}, {job::AccelerationSource::numeric, "numeric"}}};
+};

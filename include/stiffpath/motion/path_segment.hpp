@@ -41,6 +41,8 @@ struct PathSegment {
   //! the laser is off. With dynamic_power it is the power at the programmed feed.
   double power = 0.0;
   double blend_tolerance_m = 0.0;  //!< G64 P (m): how far a blended corner may leave the corner point
+  //! M204 S: the program's acceleration limit for this segment (m/s²), below the machine's; 0: the machine's.
+  double max_acceleration_m_s2 = 0.0;
   int line = 0;                  //!< 1-based source line of the G-code block
   bool rapid = false;            //!< G0
   bool laser_on = false;         //!< laser firing: M3/M4 (M106, M62) active, power > 0 and not a G0 move
