@@ -72,7 +72,7 @@ void BM_PredictPhysicalGeneralGeometry(benchmark::State& state) {
 }
 BENCHMARK(BM_PredictPhysicalGeneralGeometry);
 
-void BM_Fit(benchmark::State& state, const char* method) {
+void BM_Fit(benchmark::State& state, stiffpath::compliance::FitMethod method) {
   const auto robot = stiffpath::kinematics::load_robot("oc-gu");
   const auto table = stiffpath::measurement::load_displacement_table(robot.compliance.table);
   for (auto _ : state) {
@@ -80,9 +80,9 @@ void BM_Fit(benchmark::State& state, const char* method) {
                                                               stiffpath::compliance::ForceConvention::measured, robot));
   }
 }
-BENCHMARK_CAPTURE(BM_Fit, physical, "physical")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Fit, physical, stiffpath::compliance::FitMethod::physical)->Unit(benchmark::kMillisecond);
 // Includes filling the 0.75 mm lattice (about 27 000 nodes and as many cell-centre checks).
-BENCHMARK_CAPTURE(BM_Fit, physical_spline, "physical-spline")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Fit, physical_spline, stiffpath::compliance::FitMethod::physical_spline)->Unit(benchmark::kMillisecond);
 
 void BM_CrossValidation(benchmark::State& state) {
   const auto table =

@@ -43,7 +43,8 @@ void BM_RunJob(benchmark::State& state, job::OutputFormat format) {
   const auto out = std::filesystem::temp_directory_path() / ("stiffpath_bench_out_" + std::to_string(::getpid()));
   const auto spec = kinematics::load_robot("oc-gu");
   const compensation::Compensator comp(spec, std::shared_ptr<const compliance::Model>(
-                                                 compliance::load_model("thesis-oc").model.release()));
+                                                 compliance::load_model("thesis-oc").model.release()),
+                                           {.method = compensation::Method::quasi_static});  // the thesis's step
   std::uint64_t samples = 0;
   for (auto _ : state) {
     motion::TrajectoryStream stream(job);
@@ -69,7 +70,8 @@ void BM_PlainLoopJob(benchmark::State& state, job::OutputFormat format) {
   const auto out = std::filesystem::temp_directory_path() / ("stiffpath_bench_loop_" + std::to_string(::getpid()));
   const auto spec = kinematics::load_robot("oc-gu");
   const compensation::Compensator comp(spec, std::shared_ptr<const compliance::Model>(
-                                                 compliance::load_model("thesis-oc").model.release()));
+                                                 compliance::load_model("thesis-oc").model.release()),
+                                           {.method = compensation::Method::quasi_static});  // the thesis's step
   std::uint64_t samples = 0;
   for (auto _ : state) {
     motion::TrajectoryStream stream(job);
@@ -98,7 +100,8 @@ BENCHMARK_CAPTURE(BM_PlainLoopJob, binary, job::OutputFormat::binary)->Arg(2000)
 void BM_RunJobNoOutput(benchmark::State& state) {
   const std::string job = marking_job(static_cast<int>(state.range(0)));
   const compensation::Compensator comp(kinematics::load_robot("oc-gu"), std::shared_ptr<const compliance::Model>(
-                                                 compliance::load_model("thesis-oc").model.release()));
+                                                 compliance::load_model("thesis-oc").model.release()),
+                                           {.method = compensation::Method::quasi_static});  // the thesis's step
   std::uint64_t samples = 0;
   for (auto _ : state) {
     motion::TrajectoryStream stream(job);
@@ -173,7 +176,8 @@ BENCHMARK(BM_PlanAndSmoothJob)->Arg(2000)->Unit(benchmark::kMillisecond)->UseRea
 void BM_WriteJoints(benchmark::State& state, job::OutputFormat format) {
   const auto samples = job_samples();
   const compensation::Compensator comp(kinematics::load_robot("oc-gu"), std::shared_ptr<const compliance::Model>(
-                                                 compliance::load_model("thesis-oc").model.release()));
+                                                 compliance::load_model("thesis-oc").model.release()),
+                                           {.method = compensation::Method::quasi_static});  // the thesis's step
   std::vector<compensation::JointCommand> commands;
   for (std::size_t k = 0; k < 448000; ++k) commands.push_back(comp.step(samples[k % samples.size()]));
   const auto out = std::filesystem::temp_directory_path() / ("stiffpath_bench_write_" + std::to_string(::getpid()));
@@ -205,7 +209,8 @@ class Collect final : public job::JointWriter {
 void BM_PlainWriter(benchmark::State& state, job::OutputFormat format) {
   const std::string job = marking_job(static_cast<int>(state.range(0)));
   const compensation::Compensator comp(kinematics::load_robot("oc-gu"), std::shared_ptr<const compliance::Model>(
-                                                 compliance::load_model("thesis-oc").model.release()));
+                                                 compliance::load_model("thesis-oc").model.release()),
+                                           {.method = compensation::Method::quasi_static});  // the thesis's step
   Collect collect;
   motion::TrajectoryStream stream(job);
   job::run_job(stream, comp, &collect, job, 2000.0);

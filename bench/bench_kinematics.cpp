@@ -7,6 +7,8 @@
 #include "stiffpath/kinematics/five_bar.hpp"
 
 namespace {
+constexpr double kThesisLink_m = 0.150;  // the thesis robot's four links (§2.2)
+
 using stiffpath::kinematics::FiveBar;
 using stiffpath::kinematics::Vec2;
 
@@ -25,7 +27,7 @@ std::vector<Vec2> joint_points(const FiveBar& robot) {
 }
 
 void BM_Forward(benchmark::State& state) {
-  const FiveBar robot;
+  const FiveBar robot(kThesisLink_m);
   const auto qs = joint_points(robot);
   std::size_t i = 0;
   for (auto _ : state) benchmark::DoNotOptimize(robot.forward(qs[i++ & 1023]));
@@ -33,7 +35,7 @@ void BM_Forward(benchmark::State& state) {
 BENCHMARK(BM_Forward);
 
 void BM_Inverse(benchmark::State& state) {
-  const FiveBar robot;
+  const FiveBar robot(kThesisLink_m);
   const auto ps = workspace_points();
   std::size_t i = 0;
   for (auto _ : state) benchmark::DoNotOptimize(robot.solve_inverse(ps[i++ & 1023]));
@@ -41,7 +43,7 @@ void BM_Inverse(benchmark::State& state) {
 BENCHMARK(BM_Inverse);
 
 void BM_Jacobian(benchmark::State& state) {
-  const FiveBar robot;
+  const FiveBar robot(kThesisLink_m);
   const auto qs = joint_points(robot);
   std::size_t i = 0;
   for (auto _ : state) benchmark::DoNotOptimize(robot.jacobian(qs[i++ & 1023]));
@@ -49,7 +51,7 @@ void BM_Jacobian(benchmark::State& state) {
 BENCHMARK(BM_Jacobian);
 
 void BM_JacobianDot(benchmark::State& state) {
-  const FiveBar robot;
+  const FiveBar robot(kThesisLink_m);
   const auto qs = joint_points(robot);
   const Vec2 qd{3.0, -4.0};
   std::size_t i = 0;
@@ -58,7 +60,7 @@ void BM_JacobianDot(benchmark::State& state) {
 BENCHMARK(BM_JacobianDot);
 
 void BM_JointAcceleration(benchmark::State& state) {
-  const FiveBar robot;
+  const FiveBar robot(kThesisLink_m);
   const auto qs = joint_points(robot);
   const Vec2 qd{3.0, -4.0}, pdd{30.0, -20.0};
   std::size_t i = 0;
@@ -90,7 +92,7 @@ std::vector<Vec2> asymmetric_points() {
 }
 
 void BM_RealTimeInverseThesis(benchmark::State& state) {
-  const FiveBar robot;
+  const FiveBar robot(kThesisLink_m);
   const auto ps = workspace_points();
   InverseFrame frame;
   std::size_t i = 0;

@@ -15,9 +15,11 @@
 namespace stiffpath::cli {
 
 // Text that is not UTF-8 (a file name, a CSV cell) is printed with U+FFFD in its place, never refused.
-void print_json(const nlohmann::json& document) {
-  std::cout << document.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
+std::string dump_json(const nlohmann::json& document) {
+  return document.dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
 }
+
+void print_json(const nlohmann::json& document) { std::cout << dump_json(document) << '\n'; }
 
 double tidy(double value) {
   if (value == 0.0 || !std::isfinite(value)) return value;

@@ -107,7 +107,7 @@ void run(const SimulateOptions& o) {
   v.noise_sigma_m = units::um_to_m(o.noise_sigma_um);
   v.seed = o.seed;
   v.g_height_m = units::mm_to_m(o.g_height_mm);
-  v.step0_kgf = step0_kgf_of(table);  // the robot's own reference load, not another robot's wire system
+  v.step0_kgf = measurement::step0_load_kgf(table);  // the table's own step 0, no hook it does not name
   const auto campaign = measurement::simulate_campaign(table, v);
   if (!o.truth_output.empty()) measurement::save_displacement_table(table, o.truth_output);
   measurement::save_campaign(campaign, o.output);
@@ -159,6 +159,7 @@ measurement::ForceDirection direction_of(const std::string& text) {
 
 void plan(const PlanOptions& o) {
   const auto robot = load_robot_flag(o.robot);
+  core::check_distinct_files(robot_inputs(robot, true), {{"-o", o.output}});
   calibration::CampaignPlanSettings s;
   s.points = o.points;
   s.load_steps = o.load_steps;
@@ -234,7 +235,7 @@ void plan(const PlanOptions& o) {
 // ---- score ----
 struct ScoreOptions {
   std::string robot;
-  compliance::ModelRequest request;
+  ModelFlags request;
   std::string field;
   std::string field_terms;
   double force_N = 0.0;
@@ -243,7 +244,7 @@ struct ScoreOptions {
 
 void score(const ScoreOptions& o) {
   const auto robot = load_robot_flag(o.robot);
-  auto loaded = compliance::load_robot_model(robot, o.request);
+  auto loaded = compliance::load_robot_model(robot, model_request(o.request));
   const compliance::GridBounds b = loaded.model->bounds();
   const auto field = known_field(robot, o.field, o.field_terms, b);
   constexpr int kLattice = 41;

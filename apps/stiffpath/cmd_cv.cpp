@@ -21,8 +21,8 @@ struct CvOptions {
   bool json = false;
 };
 
-nlohmann::json to_json(const compliance::CvReport& r, const std::string& favoured,
-                       const std::vector<std::pair<std::string, double>>& scores) {
+nlohmann::json to_json(const compliance::CvReport& r, compliance::FitMethod favoured,
+                       const std::vector<std::pair<compliance::FitMethod, double>>& scores) {
   nlohmann::json methods = nlohmann::json::array();
   for (const auto& m : r.methods) {
     nlohmann::json points = nlohmann::json::array();
@@ -41,7 +41,7 @@ nlohmann::json to_json(const compliance::CvReport& r, const std::string& favoure
     nlohmann::json band = {{"cells", m.band_cells}, {"inside", m.inside_band}, {"mean_half_width_um", tidy(m.mean_band_um)},
                            {"fraction", m.band_cells > 0 ? tidy(static_cast<double>(m.inside_band) / m.band_cells) : 0.0}};
     methods.push_back({{"band_95", band},
-                       {"method", m.method},
+                       {"method", core::enum_name(m.method)},
                        {"description", m.description},
                        {"predicted_points", m.predicted},
                        {"mean_error_um", tidy(m.mean_um)},
@@ -51,14 +51,14 @@ nlohmann::json to_json(const compliance::CvReport& r, const std::string& favoure
                        {"points", points}});
   }
   nlohmann::json skipped = nlohmann::json::array();
-  for (const auto& s : r.skipped) skipped.push_back({{"method", s.method}, {"reason", s.reason}});
+  for (const auto& s : r.skipped) skipped.push_back({{"method", core::enum_name(s.method)}, {"reason", s.reason}});
   return {{"source", r.source},
           {"rows", r.rows},
           {"robot", r.robot},
-          {"force_convention", compliance::to_string(r.convention)},
-          {"zero_force", compliance::to_string(r.zero_force)},
+          {"force_convention", core::enum_name(r.convention)},
+          {"zero_force", core::enum_name(r.zero_force)},
           {"error_definition", "mean of |dx error| and |dy error| over the highest load step of each load direction"},
-          {"favoured_method", favoured},
+          {"favoured_method", core::enum_name(favoured)},
           {"methods", methods},
           {"could_not_run", skipped}};
 }
@@ -72,14 +72,14 @@ void run(const CvOptions& o) {
   const std::string rows_name = o.rows_given ? o.rows : robot.compliance.rows;
   const auto rows = table.filter(rows_name);
   if (rows.rows.empty()) throw Error(SourceLocation{table.source}, "no rows with mechanism '" + rows_name + "'");
-  const auto convention = compliance::parse_force_convention(o.forces);
+  const auto convention = core::parse_enum<compliance::ForceConvention>(o.forces);
   auto report = compliance::cross_validate(compliance::group_by_point(rows, convention), robot.geometry, table.source,
-                                           compliance::parse_zero_force(o.zero_force), true);
+                                           core::parse_enum<compliance::ZeroForce>(o.zero_force), true);
   report.rows = rows_name;
   report.robot = robot.name;
   report.convention = convention;
-  std::vector<std::pair<std::string, double>> scores;
-  const std::string favoured = compliance::favoured_method(report, &scores);
+  std::vector<std::pair<compliance::FitMethod, double>> scores;
+  const compliance::FitMethod favoured = compliance::favoured_method(report, &scores);
   if (o.json) {
     print_json(to_json(report, favoured, scores));
     return;
@@ -90,21 +90,21 @@ void run(const CvOptions& o) {
              "common points", "in 95 % band", "band +-um");
   for (std::size_t k = 0; k < report.methods.size(); ++k) {
     const auto& m = report.methods[k];
-    fmt::print("{:<16} {:>9.1f} {:>14.1f} {:>10.1f} {:>8} {:>14.1f} {:>16} {:>11}\n", m.method, m.interior_mean_um, m.mean_um,
+    fmt::print("{:<16} {:>9.1f} {:>14.1f} {:>10.1f} {:>8} {:>14.1f} {:>16} {:>11}\n", core::enum_name(m.method), m.interior_mean_um, m.mean_um,
                m.max_um, m.predicted, scores[k].second,
                m.band_cells > 0 ? fmt::format("{}/{} {:.0f} %", m.inside_band, m.band_cells, 100.0 * m.inside_band / m.band_cells)
                                 : std::string("-"),
                m.band_cells > 0 ? fmt::format("{:.1f}", m.mean_band_um) : std::string("-"));
   }
-  for (const auto& s : report.skipped) fmt::print("{:<16} could not run: {}\n", s.method, s.reason);
+  for (const auto& s : report.skipped) fmt::print("{:<16} could not run: {}\n", core::enum_name(s.method), s.reason);
   const auto& named = robot.compliance;
   const std::string note = !named.model.empty()    ? fmt::format("; robot {} names its model file {}", robot.name, named.model.label())
-                           : !named.method.empty() ? fmt::format("; robot {} names the method {} in its file", robot.name, named.method)
+                           : named.method ? fmt::format("; robot {} names the method {} in its file", robot.name, core::enum_name(*named.method))
                                                    : fmt::format("; robot {} uses it", robot.name);
   fmt::print("interior = points strictly inside the points' bounding rectangle; common points = those every method "
              "predicts;\nin 95 % band = held-out dx, dy cells within the 95 % band the method states for a measurement, "
              "learnt from the other points;\nband +-um = its mean half-width\nfavoured: {} (what fit chooses without --method{})\n",
-             favoured, note);
+             core::enum_name(favoured), note);
 }
 }  // namespace
 

@@ -64,7 +64,8 @@ nlohmann::json to_json(const DataCheckReport& r) {
   return {{"source", r.source}, {"accuracy_um", tidy(units::m_to_um(r.options.accuracy_m))},
           {"angle_accuracy_deg", tidy(units::rad_to_deg(r.options.angle_accuracy_rad()))},
           {"force_basis", r.options.nominal_forces ? "nominal" : "measured"}, {"flagged", r.flagged_count()},
-          {"linearity", lin}, {"symmetry", sym}, {"reciprocity", rec}, {"oc_vs_sc", cmp}, {"skipped", r.skipped}};
+          {"linearity", lin}, {"symmetry", sym}, {"reciprocity", rec}, {"oc_vs_sc", cmp}, {"skipped", r.skipped},
+          {"not_applicable", r.not_applicable}};
 }
 
 constexpr int kListed = 10;  // flagged results listed per check in the text output (--json has all)
@@ -83,7 +84,7 @@ std::string per_mechanism(const std::vector<T>& v) {
   }
   std::string out;
   for (const auto& [m, c] : counts) out += fmt::format("{}{} {}/{}", out.empty() ? "" : ", ", m, c.first, c.second);
-  return out.empty() ? "nothing to check (needs both OC and SC rows)" : out;
+  return out.empty() ? "none" : out;
 }
 
 template <class T, class F>
@@ -123,17 +124,16 @@ void print_text(const DataCheckReport& r) {
     fmt::print("    {} {} step {}: OC {:.4f} mm > SC {:.4f} mm\n", c.point, to_string(c.direction), c.step,
                units::m_to_mm(c.oc_total_m), units::m_to_mm(c.sc_total_m));
   });
-  if (!r.skipped.empty()) fmt::print("  skipped: {} (missing cells or partners; see --json)\n", r.skipped.size());
+  for (const auto& why : r.not_applicable) fmt::print("  does not apply to this robot: {}\n", why);
+  if (!r.skipped.empty()) fmt::print("  could not run on these data: {} (missing cells or partners; see --json)\n", r.skipped.size());
   fmt::print("{} flagged\n", r.flagged_count());
 }
 
 void run(const DataCheckCli& o) {
-  DataCheckOptions options;
+  const auto robot = load_robot_flag(o.robot);
+  DataCheckOptions options = data_check_options(robot);
   options.accuracy_m = units::um_to_m(o.accuracy_um);
   options.nominal_forces = o.nominal_forces;
-  const auto robot = load_robot_flag(o.robot);
-  if (robot.replica) options.ul_m = robot.replica->ul_m;
-  options.mirror_symmetric = robot.geometry.mirror_symmetric_about_x();
   if (o.file.empty() && robot.compliance.table.empty()) {
     throw Error(fmt::format("robot '{}' names no displacement table: give one as the first argument", robot.name));
   }
@@ -157,7 +157,7 @@ void add_data_command(CLI::App& app) {
                                   "expected (default: oc-gu, every row)");
   check->add_option("--accuracy-um", opts->accuracy_um, "Accuracy of one displacement cell (um)")->capture_default_str()
       ->check(within(0.001, 100000.0, "um"));
-  check->add_flag("--nominal-forces", opts->nominal_forces, "Regress on F_nominal_N (50 ... 250 N) instead of F_N");
+  check->add_flag("--nominal-forces", opts->nominal_forces, "Regress on the table's F_nominal_N (its round loads) instead of F_N");
   check->add_flag("--json", opts->json, "Print every result as JSON");
   check->callback([opts, robot] {
     opts->robot_given = robot->count() > 0;

@@ -12,6 +12,7 @@
 #include "stiffpath/core/output_budget.hpp"
 #include "stiffpath/core/atomic_directory.hpp"
 #include "stiffpath/core/atomic_file.hpp"
+#include "stiffpath/core/units.hpp"
 #include "stiffpath/report/experiment_plots.hpp"
 #include "stiffpath/report/gnuplot.hpp"
 #include "stiffpath/report/robustness_plots.hpp"
@@ -33,6 +34,10 @@ struct ExperimentArgs {
   TwinFlags twin;
   bool robustness = false;
   simulation::RobustnessOptions robust;
+  std::vector<std::string> variants{"thesis", "default"}, robust_variants{"without", "thesis", "default"};
+  // Flags in the units people think in; the options are SI.
+  std::vector<double> accelerations_g{1, 2, 3, 4, 5}, noise_um{0.0, 23.0};
+  double robust_accel_g = 5.0;
 };
 
 // The files an experiment reads (robot files, G-code paths without their ":SIDES"), which its
@@ -49,11 +54,18 @@ std::vector<core::NamedPath> experiment_inputs(const ExperimentArgs& a) {
   return inputs;
 }
 
+std::vector<simulation::CompensationVariant> variants(const std::vector<std::string>& names) {
+  std::vector<simulation::CompensationVariant> out;
+  for (const auto& name : names) out.push_back(core::parse_enum<simulation::CompensationVariant>(name));
+  return out;
+}
+
 void robustness(ExperimentArgs& a, const std::filesystem::path& dir) {
   a.robust.base = a.options;
   if (a.robots_given) a.robust.robot = a.options.robots.front();
   const int runs = simulation::robustness_run_count(a.robust);
-  fmt::print("robustness: {} runs on {} at {:g} g ({} seeds)\n", runs, a.robust.robot, a.robust.acceleration_g,
+  fmt::print("robustness: {} runs on {} at {:g} g ({} seeds)\n", runs, a.robust.robot,
+             a.robust.acceleration_m_s2 / units::standard_gravity_m_s2,
              a.robust.seeds);
   const auto start = std::chrono::steady_clock::now();
   core::check_output_directory(a.output);  // before the runs, not after them
@@ -78,6 +90,13 @@ void robustness(ExperimentArgs& a, const std::filesystem::path& dir) {
 }
 
 void experiment(ExperimentArgs a) {
+  a.options.variants = variants(a.variants);
+  a.robust.variants = variants(a.robust_variants);
+  a.options.accelerations_m_s2.clear();
+  for (const double g : a.accelerations_g) a.options.accelerations_m_s2.push_back(g * units::standard_gravity_m_s2);
+  a.robust.acceleration_m_s2 = a.robust_accel_g * units::standard_gravity_m_s2;
+  a.robust.noise_sigmas_m.clear();
+  for (const double um : a.noise_um) a.robust.noise_sigmas_m.push_back(units::um_to_m(um));
   apply_twin_flags(a.twin, a.options.simulation, a.options.truth);
   a.options.cg_lever = !a.twin.no_cg_lever;
   const std::filesystem::path dir(a.output);
@@ -127,10 +146,10 @@ void add_experiment_command(CLI::App& app) {
                                   "rectangle")->capture_default_str();
   cmd->add_option("--path", a->paths, "A G-code file of your own to run as FILE[:SIDES] (repeatable; without "
                                       "--motions only these run)");
-  cmd->add_option("--accelerations-g", a->options.accelerations_g, "Acceleration limits (g)")
+  cmd->add_option("--accelerations-g", a->accelerations_g, "Acceleration limits (g)")
       ->check(within(0.1, 10.0, "g"))->capture_default_str();
-  cmd->add_option("--variants", a->options.variants, "Compensations besides none: thesis (quasi-static bilinear), "
-                                                     "default (what `run --method auto` does: dynamic, smoothed, the cross-validated model)")
+  cmd->add_option("--variants", a->variants, "Compensations besides none: thesis (`run --thesis`: quasi-static, "
+                                             "bilinear), default (what `run` does by default)")
       ->check(CLI::IsMember({"thesis", "default"}))->capture_default_str();
   cmd->add_option("--gain", a->options.compensator.gain, "Compensation gain")->check(within(0.0, 10.0, ""))
       ->capture_default_str();
@@ -144,9 +163,9 @@ void add_experiment_command(CLI::App& app) {
   cmd->add_option("--seeds", a->robust.seeds, "Robustness: truth/campaign seeds 1 … N")
       ->check(CLI::Range(1, 100))->capture_default_str();
   cmd->add_option("--robust-motions", a->robust.motions, "Robustness: motions")->capture_default_str();
-  cmd->add_option("--robust-accel-g", a->robust.acceleration_g, "Robustness: acceleration limit (g)")
+  cmd->add_option("--robust-accel-g", a->robust_accel_g, "Robustness: acceleration limit (g)")
       ->check(within(0.1, 10.0, "g"))->capture_default_str();
-  cmd->add_option("--robust-variants", a->robust.variants, "Robustness: without, thesis, default")
+  cmd->add_option("--robust-variants", a->robust_variants, "Robustness: without, thesis, default")
       ->check(CLI::IsMember({"without", "thesis", "default"}))->capture_default_str();
   cmd->add_option("--damping-ratios", a->robust.damping_ratios, "Robustness: tip damping ratios")
       ->check(within(0.0, 2.0, ""))->capture_default_str();
@@ -154,7 +173,7 @@ void add_experiment_command(CLI::App& app) {
       ->check(within(-0.5, 1.0, ""))->capture_default_str();
   cmd->add_option("--servo-bandwidths-hz", a->robust.servo_bandwidths_hz, "Robustness: servo bandwidths (Hz)")
       ->check(within(1.0, 2000.0, ""))->capture_default_str();
-  cmd->add_option("--noise-um", a->robust.noise_sigmas_um, "Robustness: campaign noise sigma per coordinate (um)")
+  cmd->add_option("--noise-um", a->noise_um, "Robustness: campaign noise sigma per coordinate (um)")
       ->check(within(0.0, 1000.0, ""))->capture_default_str();
   cmd->add_option("--max-runs", a->robust.max_runs, "Robustness: refuse sweeps with more runs")
       ->check(CLI::Range(1, 100000))->capture_default_str();

@@ -37,9 +37,16 @@ void run(const FitOptions& o) {
                              {{"-o", o.output}});
   const auto table = measurement::load_displacement_table(table_file);
   const std::string rows = o.rows_given ? o.rows : robot.compliance.rows;
-  auto fitted = compliance::fit_model(table, rows, o.method, compliance::parse_force_convention(o.forces), robot);
-  fitted.model->set_outside_policy(compliance::parse_outside_policy(o.outside));
-  fitted.model->set_zero_force(compliance::parse_zero_force(o.zero_force));
+  const auto method = [&] {
+    try {
+      return compliance::parse_fit_method(o.method);
+    } catch (const Error& e) {
+      throw Error("--method: " + e.message());
+    }
+  }();
+  auto fitted = compliance::fit_model(table, rows, method, core::parse_enum<compliance::ForceConvention>(o.forces), robot);
+  fitted.model->set_outside_policy(core::parse_enum<compliance::OutsidePolicy>(o.outside));
+  fitted.model->set_zero_force(core::parse_enum<compliance::ZeroForce>(o.zero_force));
   std::string uncertainty_note;
   try {
     compliance::add_uncertainty(fitted);
@@ -52,10 +59,10 @@ void run(const FitOptions& o) {
     print_json(doc);
     return;
   }
-  fmt::print("{} model of robot {} from {}{} ({} forces, {}, outside the measured region: {})\n", fitted.model->method(),
+  fmt::print("{} model of robot {} from {}{} ({} forces, {}, outside the measured region: {})\n", fitted.model->description(),
              robot.name, fitted.provenance.source, rows.empty() ? "" : " rows " + rows, o.forces, o.zero_force,
              o.outside);
-  if (fitted.provenance.selected_by == "cross-validation") {
+  if (fitted.provenance.selected_by == compliance::MethodSelection::cross_validation) {
     std::string scores;
     for (const auto& [name, um] : fitted.provenance.selection["mean_error_um"].items()) {
       scores += fmt::format("{}{} {:.1f}", scores.empty() ? "" : ", ", name, um.get<double>());
@@ -99,9 +106,10 @@ void add_fit_command(CLI::App& app) {
   add_robot_flag(cmd, o->robot);
   auto* rows = cmd->add_option("--rows", o->rows, "Rows of the table's mechanism column to use (default: the robot's)");
   cmd->add_option("--method", o->method,
-                  "auto (the method cross-validation favours), bilinear (thesis), symmetric, physical, physical-0, physical-2, physical-spline")
+                  "auto (the method cross-validation favours), or one of " + core::enum_choices<compliance::FitMethod>() +
+                      " (bilinear: the thesis's)")
       ->capture_default_str();
-  cmd->add_option("--forces", o->forces, "measured (kgf relative to step 0) or nominal (50-250 N)")->capture_default_str();
+  cmd->add_option("--forces", o->forces, "measured (the table's F_N, relative to step 0) or nominal (its F_nominal_N column: the round loads it names)")->capture_default_str();
   cmd->add_option("--outside", o->outside,
                   "Beyond 1 mm outside the measured region: error (refuse), clamp or extrapolate")->capture_default_str();
   cmd->add_option("--zero-force", o->zero_force, "relative (default) or thesis-raw (keep eq. 4.8's intercepts)")

@@ -10,9 +10,11 @@
 #include "bounded.hpp"
 #include "commands.hpp"
 #include "robot_flags.hpp"
+#include "stiffpath/kinematics/robot_json.hpp"
 #include "stiffpath/calibration/geometry_fit.hpp"
 #include "stiffpath/calibration/geometry_plan.hpp"
 #include "stiffpath/core/atomic_file.hpp"
+#include "stiffpath/core/distinct_files.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/core/output_budget.hpp"
 #include "stiffpath/core/units.hpp"
@@ -124,6 +126,7 @@ nlohmann::json report_json(const FitOptions& o, const kinematics::Robot& robot, 
 
 void fit(const FitOptions& o) {
   const auto robot = load_robot_flag(o.robot);
+  core::check_distinct_files(robot_inputs(robot, false, {{"readings", o.readings}}), {{"-o", o.output}});
   const auto readings = calibration::load_geometry_readings(o.readings);
   const std::filesystem::path out(o.output);
   const std::filesystem::path dir = o.report_dir.empty() ? out.parent_path() / (out.stem().string() + "_report") : std::filesystem::path(o.report_dir);
@@ -186,6 +189,7 @@ struct PlanOptions {
 
 void plan(const PlanOptions& o) {
   const auto robot = load_robot_flag(o.robot);
+  core::check_distinct_files(robot_inputs(robot, false), {{"-o", o.output}});
   calibration::GeometryPlanSettings s;
   s.poses = o.poses;
   s.fit = o.tolerances.settings();
@@ -243,6 +247,7 @@ struct SimulateOptions {
 
 void simulate(const SimulateOptions& o) {
   const auto truth = kinematics::load_robot(o.truth);
+  core::check_distinct_files(robot_inputs(truth, false, {{"--poses", o.poses}}), {{"-o", o.output}});
   const auto q = calibration::load_pose_angles(o.poses);
   calibration::GeometryRehearsal r;
   r.frame.rotation = (Eigen::AngleAxisd(units::deg_to_rad(o.yaw_deg), Eigen::Vector3d::UnitZ()) *

@@ -51,16 +51,8 @@ void print_pose(const nlohmann::json& pose) {
 void run_fk(const KinOptions& o) {
   const auto robot = load_robot_flag(o.robot);
   const Vec2 q{units::deg_to_rad(o.theta1_deg), units::deg_to_rad(o.theta2_deg)};
-  for (std::size_t i = 0; i < 2; ++i) {
-    const auto& lim = robot.joints[i];
-    if (!(q[static_cast<Eigen::Index>(i)] >= lim.min_rad && q[static_cast<Eigen::Index>(i)] <= lim.max_rad)) {
-      throw Error(fmt::format("joint {} = {:g} deg is outside its range [{:.1f}, {:.1f}] deg on robot '{}'", lim.name,
-                              i == 0 ? o.theta1_deg : o.theta2_deg, units::rad_to_deg(lim.min_rad),
-                              units::rad_to_deg(lim.max_rad), robot.name));
-    }
-  }
+  const Vec2 p = robot.forward(q);
   const auto five_bar = robot.five_bar();
-  const Vec2 p = five_bar.forward_checked(q);
   auto pose = pose_json(five_bar, q, p);
   // Angles whose elbows sit on the other side than the robot's working mode give a point the robot
   // reaches with other angles: say so rather than call the pose reachable.

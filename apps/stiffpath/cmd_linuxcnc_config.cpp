@@ -22,7 +22,7 @@ namespace {
 
 struct ConfigArgs {
   std::string robot;
-  compliance::ModelRequest request;
+  ModelFlags request;
   std::string output;
   std::string accel = "2g";
   double max_velocity_mm_s = units::m_to_mm(motion::default_max_velocity_m_s);
@@ -91,7 +91,7 @@ Machine check(const ConfigArgs& a, std::unique_ptr<compliance::LoadedModel>& loa
     throw Error("--force-model: a configuration cannot carry it (stiffpathcomp and stiffpath run would refuse a model "
                 "fitted for another geometry); fit one for this robot with `stiffpath fit --robot ...`");
   }
-  loaded = std::make_unique<compliance::LoadedModel>(compliance::load_robot_model(robot, a.request));
+  loaded = std::make_unique<compliance::LoadedModel>(compliance::load_robot_model(robot, model_request(a.request)));
   const bool builtin = !a.request.model.empty() && compliance::is_builtin_model(a.request.model);
   m.model_setting = builtin ? a.request.model : kModelName;
 

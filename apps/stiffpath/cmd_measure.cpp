@@ -21,7 +21,7 @@ struct MeasureOptions {
   std::string robot;
   std::string output;
   bool nominal_forces = false;
-  double nominal_step_N = 50.0;
+  std::optional<double> nominal_step_N;
   bool json = false;
 };
 
@@ -63,6 +63,9 @@ void run(const MeasureOptions& o) {
       {"ug_mm", tidy(units::m_to_mm(robot.replica->ug_m))},
       {"ul_mm", tidy(units::m_to_mm(robot.replica->ul_m))},
       {"force_basis", o.nominal_forces ? "nominal" : "measured"},
+      {"nominal_forces_from", campaign.has_nominal_forces ? "the campaign's force_nominal_N"
+                              : o.nominal_step_N          ? fmt::format("step x {:g} N", *o.nominal_step_N)
+                                                          : std::string("the measured forces")},
       {"readings", campaign.readings.size()},
       {"rows", table.rows.size()},
       {"rows_with_spread", with_spread},
@@ -76,7 +79,9 @@ void run(const MeasureOptions& o) {
   fmt::print("{} readings -> {} rows ({} {}, G = U + {:.0f}/{:.0f} UL, forces {})\n", campaign.readings.size(),
              table.rows.size(), robot.name, robot.compliance.rows, units::m_to_mm(robot.replica->ug_m),
              units::m_to_mm(robot.replica->ul_m),
-             o.nominal_forces ? "nominal 50 N steps" : "measured, relative to step 0");
+             !o.nominal_forces                ? std::string("measured, relative to step 0")
+             : campaign.has_nominal_forces    ? std::string("nominal, from the campaign's force_nominal_N")
+                                              : fmt::format("nominal, step x {:g} N", *o.nominal_step_N));
   fmt::print("largest total displacement {:.4f} mm at {}\n", units::m_to_mm(max_total), max_where);
   if (with_spread > 0) {
     fmt::print("{} rows averaged repeated readings; largest reading SD {:.1f} um\n", with_spread,
@@ -93,8 +98,10 @@ void add_measure_command(CLI::App& app) {
   add_robot_flag(cmd, opts->robot)->description("Robot: |UG|, |UL| of its replica and its rows label (default: oc-gu)");
   cmd->add_option("-o,--output", opts->output, "Displacement table CSV to write")->check(output_name())->required();
   cmd->add_flag("--nominal-forces", opts->nominal_forces,
-                "Write F_N as step x nominal step (50 ... 250 N) as the thesis did, not the measured kgf");
-  cmd->add_option("--nominal-step-N", opts->nominal_step_N, "Nominal force per load step (N)")->capture_default_str()
+                "Write F_N as the campaign's nominal loads (its force_nominal_N column, or step x --nominal-step-N), "
+                "not the measured ones; refused when the campaign names none");
+  cmd->add_option("--nominal-step-N", opts->nominal_step_N,
+                  "Nominal load per step (N) for a campaign without a force_nominal_N column")
       ->check(within(0.001, 100000.0, "N"));
   cmd->add_flag("--json", opts->json, "Print a JSON summary");
   cmd->callback([opts] { run(*opts); });

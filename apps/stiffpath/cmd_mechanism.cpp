@@ -5,6 +5,7 @@
 #include "commands.hpp"
 #include "robot_flags.hpp"
 #include "stiffpath/core/units.hpp"
+#include "stiffpath/kinematics/robot_json.hpp"
 
 namespace stiffpath::cli {
 
@@ -56,7 +57,7 @@ void show(const RobotOptions& o) {
   fmt::print("  compliance table     {}{}\n", c.table.empty() ? "(none)" : c.table.label(),
              c.rows.empty() ? "" : ", rows " + c.rows);
   fmt::print("  compliance model     {}\n", !c.model.empty()      ? c.model.label()
-                                          : !c.method.empty()    ? c.method + " fitted to the table"
+                                          : c.method             ? std::string(core::enum_name(*c.method)) + " fitted to the table"
                                           : c.table.empty()      ? "(none)"
                                                                  : "fitted to the table by the method cross-validation favours");
 }

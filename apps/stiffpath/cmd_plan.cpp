@@ -109,7 +109,7 @@ void run_plan(const PlanArgs& a) {
                 {"max_jerk_m_s3", tidy(options.limits.max_jerk_m_s3)},
                 {"lookahead_peak_segments", planner.peak_window},
                 {"warnings", warnings_json(planned.warnings())},
-                {"slowdowns", slowdowns_json(planned.slowdowns())},
+                {"slowdowns", slowdowns_json(*planned.slowdowns())},
                 {"output", a.output.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.output)}};
     if (a.output == "-") {
       std::cerr << summary_json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
@@ -130,7 +130,7 @@ void run_plan(const PlanArgs& a) {
   fmt::print(info, "laser on {:.4f} s (peak power {:.1f} %, {:.4f} s at full power); the look-ahead held at most {} segment{}\n",
              summary.laser_on_s, 100.0 * summary.peak_power, summary.laser_full_power_s, planner.peak_window,
              planner.peak_window == 1 ? "" : "s");
-  print_slowdowns(info, planned.slowdowns());
+  print_slowdowns(info, *planned.slowdowns());
   if (!a.output.empty()) fmt::print(info, "wrote {}\n", a.output);
 }
 

@@ -33,7 +33,7 @@ namespace stiffpath::cli {
 namespace {
 struct PlotOptions {
   std::string robot;
-  compliance::ModelRequest request;
+  ModelFlags model;
   std::string data;  // default: the robot's table
   std::string dir = "plots";
   double margin_mm = 0.0;
@@ -144,21 +144,21 @@ void add_plot_command(CLI::App& app) {
 
   auto* comp = plot->add_subcommand("compliance", "Largest compliance over the workspace with principal directions");
   add_robot_flag(comp, o->robot);
-  add_model_flags(comp, o->request);
+  add_model_flags(comp, o->model);
   comp->add_option("--margin-mm", o->margin_mm, "Also show this far outside the grid")->capture_default_str();
   add_common(comp, *o);
   comp->callback([o] {
     const auto robot = load_robot_flag(o->robot);
-    const auto loaded = compliance::load_robot_model(robot, o->request);
+    const auto loaded = compliance::load_robot_model(robot, model_request(o->model));
     const std::string name =
-        "compliance_" + safe_name(!o->request.model.empty() ? std::filesystem::path(o->request.model).stem().string()
-                                                            : robot.name + "-" + loaded.model->method());
+        "compliance_" + safe_name(!o->model.model.empty() ? std::filesystem::path(o->model.model).stem().string()
+                                                          : robot.name + "-" + loaded.model->description());
     auto inputs = robot_inputs(robot);
-    inputs.push_back({"--model", o->request.model});
+    inputs.push_back({"--model", o->model.model});
     core::AtomicDirectory out(o->dir, inputs);
     const double largest = report::plot_compliance_map(
         out.staging(), name, *loaded.model,
-        fmt::format("{} ({}, {}): largest compliance", robot.name, loaded.label, loaded.model->method()),
+        fmt::format("{} ({}, {}): largest compliance", robot.name, loaded.label, loaded.model->description()),
         o->margin_mm * 1e-3, report::parse_style(o->style));
     out.commit();
     print_written(o->dir, {name});

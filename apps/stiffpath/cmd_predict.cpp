@@ -17,7 +17,7 @@ namespace stiffpath::cli {
 namespace {
 struct PredictOptions {
   std::string robot;
-  compliance::ModelRequest request;
+  ModelFlags model;
   std::string outside;
   double x_mm = 0.0, y_mm = 0.0, fx_n = 0.0, fy_n = 0.0;
   double tool_below_G_mm = 0.0;
@@ -28,8 +28,8 @@ struct PredictOptions {
 
 void run(const PredictOptions& o) {
   const auto robot = load_robot_flag(o.robot);
-  auto loaded = compliance::load_robot_model(robot, o.request);
-  if (!o.outside.empty()) loaded.model->set_outside_policy(compliance::parse_outside_policy(o.outside));
+  auto loaded = compliance::load_robot_model(robot, model_request(o.model));
+  if (!o.outside.empty()) loaded.model->set_outside_policy(core::parse_enum<compliance::OutsidePolicy>(o.outside));
   const compliance::Model& model = *loaded.model;
   const compliance::Vec2 p{o.x_mm * 1e-3, o.y_mm * 1e-3}, F{o.fx_n, o.fy_n};
   if (model.refuses(p)) {
@@ -43,7 +43,7 @@ void run(const PredictOptions& o) {
   const compliance::Mat2 c = model.compliance(p) * 1e6;
   nlohmann::json out = {{"robot", robot.name},
                         {"model", loaded.label},
-                        {"method", model.method()},
+                        {"method", model.description()},
                         {"x_mm", o.x_mm},
                         {"y_mm", o.y_mm},
                         {"fx_n", o.fx_n},
@@ -79,7 +79,7 @@ void run(const PredictOptions& o) {
     const auto table = measurement::load_displacement_table(angles_ref).filter(loaded.provenance.rows);
     std::shared_ptr<const compliance::GridModel> angular =
         compliance::make_angular_model(compliance::fit_points(table, loaded.provenance.convention), table.source);
-    std::shared_ptr<const compliance::Model> at_G = compliance::load_robot_model(robot, o.request).model;
+    std::shared_ptr<const compliance::Model> at_G = compliance::load_robot_model(robot, model_request(o.model)).model;
     const compliance::ToolPointModel tool(at_G, angular, o.tool_below_G_mm * 1e-3);
     const compliance::Vec2 dt = tool.predict(p, F);
     out["tool_below_G_mm"] = o.tool_below_G_mm;
@@ -91,9 +91,9 @@ void run(const PredictOptions& o) {
     print_json(out);
     return;
   }
-  fmt::print("{} ({}) of robot {} at ({}, {}) mm under F = ({}, {}) N{}:\n", loaded.label, model.method(), robot.name,
+  fmt::print("{} ({}) of robot {} at ({}, {}) mm under F = ({}, {}) N{}:\n", loaded.label, model.description(), robot.name,
              o.x_mm, o.y_mm, o.fx_n, o.fy_n,
-             model.inside(p) ? "" : fmt::format(" [outside the measured region: {}]", compliance::to_string(model.outside_policy())));
+             model.inside(p) ? "" : fmt::format(" [outside the measured region: {}]", core::enum_name(model.outside_policy())));
   fmt::print("  dx = {:.2f} um, dy = {:.2f} um at G\n", d.x() * 1e6, d.y() * 1e6);
   if (out.contains("dx_band_95_um")) {
     fmt::print("  95 % band of the deflection: dx +- {:.2f} um, dy +- {:.2f} um; of a measurement of it (the campaign's "
@@ -116,7 +116,7 @@ void add_predict_command(CLI::App& app) {
   auto o = std::make_shared<PredictOptions>();
   auto* cmd = app.add_subcommand("predict", "Predict the deflection at a point under a force (eqs. 4.6-4.7)");
   add_robot_flag(cmd, o->robot);
-  add_model_flags(cmd, o->request);
+  add_model_flags(cmd, o->model);
   cmd->add_option("--outside", o->outside, "Beyond the measured region: error, clamp or extrapolate (default: model's)");
   cmd->add_option("--x-mm", o->x_mm, "Platform x (mm)")->required()->check(within(-1e4, 1e4, "mm"));
   cmd->add_option("--y-mm", o->y_mm, "Platform y (mm)")->required()->check(within(-1e4, 1e4, "mm"));

@@ -28,7 +28,7 @@ namespace stiffpath::cli {
 namespace {
 struct ReportArgs {
   std::string robot;
-  compliance::ModelRequest request;
+  ModelFlags model_flags;
   std::string joints, experiment;
   double gain = 1.0;
   std::string output = "report";
@@ -65,7 +65,7 @@ report::Section robot_section(const kinematics::Robot& robot, bool defaulted, co
                     sha_of(robot.compliance.table)});
   }
   if (model != nullptr) {
-    rows.push_back({"compliance model", model->label + " (" + model->model->method() + ", fitted to " +
+    rows.push_back({"compliance model", model->label + " (" + model->model->description() + ", fitted to " +
                                             model->provenance.source + ")",
                     model->provenance.sha256.empty() ? "" : "data " + model->provenance.sha256});
   }
@@ -89,8 +89,8 @@ report::Section robot_section(const kinematics::Robot& robot, bool defaulted, co
               report::html_table({"what", "which", "SHA-256"}, rows)};
 }
 
-report::Section checks_section(const measurement::DisplacementTable& table) {
-  const auto r = measurement::check_displacements(table);
+report::Section checks_section(const kinematics::Robot& robot, const measurement::DisplacementTable& table) {
+  const auto r = measurement::check_displacements(table, data_check_options(robot));
   const auto count = [](const auto& results) {
     int flagged = 0;
     for (const auto& x : results) flagged += x.flagged ? 1 : 0;
@@ -102,7 +102,8 @@ report::Section checks_section(const measurement::DisplacementTable& table) {
        {"symmetry about the x axis", count(r.symmetry)},
        {"reciprocity (Maxwell–Betti)", count(r.reciprocity)},
        {"over-constrained moves less than simple", count(r.comparison)}});
-  if (!r.skipped.empty()) html += fmt::format("<p>{} checks could not run (missing cells or partners).</p>\n", r.skipped.size());
+  for (const auto& why : r.not_applicable) html += "<p>Does not apply to this robot: " + report::escape_html(why) + ".</p>\n";
+  if (!r.skipped.empty()) html += fmt::format("<p>{} checks could not run on these data (missing cells or partners).</p>\n", r.skipped.size());
   html += "<p>The same checks in full: <code>stiffpath data check --robot NAME</code>.</p>\n";
   return {"checks", "Data checks", html};
 }
@@ -116,16 +117,16 @@ report::Section model_section(const kinematics::Robot& robot, const measurement:
   cv.robot = robot.name;
   std::vector<std::vector<std::string>> rows;
   for (const auto& m : cv.methods) {
-    rows.push_back({m.method, fmt::format("{:.1f}", m.mean_um), fmt::format("{:.1f}", m.max_um),
+    rows.push_back({std::string(core::enum_name(m.method)), fmt::format("{:.1f}", m.mean_um), fmt::format("{:.1f}", m.max_um),
                     fmt::format("{:.1f}", m.interior_mean_um), std::to_string(m.predicted)});
   }
   std::string html = fmt::format("<p>Model used: <b>{}</b>. Leave-one-out cross-validation on {} (favoured: {}):</p>\n",
                                  report::escape_html(model.label), report::escape_html(table.source),
-                                 report::escape_html(compliance::favoured_method(cv)));
+                                 report::escape_html(std::string(core::enum_name(compliance::favoured_method(cv)))));
   html += report::html_table({"method", "mean error (µm)", "max error (µm)", "interior mean (µm)", "points predicted"}, rows);
   const std::string map = "compliance_map", cvname = "cross_validation";
   report::plot_compliance_map(figs, map, *model.model,
-                              fmt::format("{} ({}): largest compliance", robot.name, model.model->method()), 0.0, style);
+                              fmt::format("{} ({}): largest compliance", robot.name, model.model->description()), 0.0, style);
   report::plot_cross_validation(figs, cvname, cv, style);
   html += figure(figs, map, "Largest eigenvalue of the compliance matrix over the measured rectangle, with principal "
                             "directions (stiffpath plot compliance).");
@@ -159,7 +160,7 @@ report::Section twin_section(const ReportArgs& a, const std::filesystem::path& f
   std::string html = fmt::format("<p>{} runs, {} (stiffpath experiment).</p>\n", table.rows.size(),
                                  table.source == "simulated" ? "simulated on the digital twin" : "measured");
   if (std::filesystem::exists(dir / "summary.md")) {
-    html += "<pre>" + report::escape_html(core::read_data(core::parse_data_ref((dir / "summary.md").string()))) + "</pre>\n";
+    html += report::markdown_html(core::read_data(core::parse_data_ref((dir / "summary.md").string())));
   }
   for (const auto& name : report::write_results_figures(figs, table, style)) {
     html += figure(figs, name, "Length or deviation area against acceleration, in the layout of the thesis's figs. "
@@ -192,11 +193,11 @@ void make_report(const ReportArgs& a) {
   std::vector<report::Section> sections;
   const bool has_data = !robot.compliance.table.path.empty();
   std::unique_ptr<compliance::LoadedModel> model;
-  if (has_data || !robot.compliance.model.path.empty() || !a.request.model.empty()) {
-    model = std::make_unique<compliance::LoadedModel>(compliance::load_robot_model(robot, a.request));
+  if (has_data || !robot.compliance.model.path.empty() || !a.model_flags.model.empty()) {
+    model = std::make_unique<compliance::LoadedModel>(compliance::load_robot_model(robot, model_request(a.model_flags)));
   }
   auto inputs = robot_inputs(robot);
-  inputs.push_back({"--model", a.request.model});
+  inputs.push_back({"--model", a.model_flags.model});
   inputs.push_back({"--joints", a.joints});
   if (!a.experiment.empty()) {
     inputs.push_back({"--experiment", std::filesystem::path(a.experiment) / "results.csv"});
@@ -209,7 +210,7 @@ void make_report(const ReportArgs& a) {
   progress.update(0.1, "data checks");
   if (has_data) {
     const auto table = compliance::robot_table(robot);
-    sections.push_back(checks_section(table));
+    sections.push_back(checks_section(robot, table));
     progress.update(0.2, "cross-validation");
     if (model) sections.push_back(model_section(robot, table, *model, figs, style));
   }
@@ -234,7 +235,7 @@ void add_report_command(CLI::App& app) {
   auto a = std::make_shared<ReportArgs>();
   auto* cmd = app.add_subcommand("report", "One self-contained HTML page: provenance, data checks, model, run, twin");
   add_robot_flag(cmd, a->robot);
-  add_model_flags(cmd, a->request);
+  add_model_flags(cmd, a->model_flags);
   cmd->add_option("--joints", a->joints, "A joint trajectory from `stiffpath run` to show (CSV or binary); the report "
                                          "is on the robot it records unless --robot");
   cmd->add_flag("--force-robot", a->force_robot, "Report a joint file written for another robot anyway");

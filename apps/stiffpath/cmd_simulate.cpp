@@ -289,7 +289,7 @@ void simulate(const SimulateArgs& a) {
     return;
   }
   fmt::print("{}: simulated {:.4f} s on {} (C_true {} perturbed {:g}, seed {}; {} servo{}), {} laser stroke{}\n",
-             a.joints, run.duration_s, robot.name, truth_options.family, truth_options.perturbation, truth_options.seed,
+             a.joints, run.duration_s, robot.name, core::enum_name(truth_options.family), truth_options.perturbation, truth_options.seed,
              a.twin.servo, sim.cg_lever ? ", CG lever" : "", meter.stroke_count(), meter.stroke_count() == 1 ? "" : "s");
   if (m.line_strokes > 0) {
     const std::string over = m.line_strokes == 1 && meter.stroke_count() == 1

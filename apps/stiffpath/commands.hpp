@@ -27,8 +27,11 @@ void add_simulate_command(CLI::App& app);
 void add_experiment_command(CLI::App& app);
 void add_report_command(CLI::App& app);
 void add_linuxcnc_command(CLI::App& app);
+void add_calibrate_command(CLI::App& app);
 
-//! Prints a JSON document on stdout (two-space indent, newline).
+//! A JSON document as text (two-space indent; text that is not UTF-8 printed with U+FFFD in its place).
+std::string dump_json(const nlohmann::json& document);
+//! Prints a JSON document on stdout (dump_json, newline).
 void print_json(const nlohmann::json& document);
 
 //! Rounds for display in JSON so that outputs are stable (12 significant digits).

@@ -27,5 +27,6 @@ int main(int argc, char** argv) {
   stiffpath::cli::add_experiment_command(app);
   stiffpath::cli::add_report_command(app);
   stiffpath::cli::add_linuxcnc_command(app);
+  stiffpath::cli::add_calibrate_command(app);
   return stiffpath::cli::run(app, argc, argv);
 }

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <fmt/format.h>
+#include <fstream>
 #include <unistd.h>
 
 namespace stiffpath::cli {
@@ -39,6 +41,27 @@ void Progress::finish() {
   std::fprintf(stderr, "\r\033[K");
   std::fflush(stderr);
   drawn_ = false;
+}
+
+namespace {
+int count_lines(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  int lines = 0;
+  char buffer[1 << 16];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    for (std::streamsize i = 0; i < in.gcount(); ++i) lines += buffer[i] == '\n';
+  }
+  return lines;
+}
+}  // namespace
+
+job::Progress job_progress(const std::string& gcode_file, Progress& bar) {
+  if (!bar.enabled()) return {};
+  const int total = std::max(count_lines(gcode_file), 1);
+  return [total, &bar](std::uint64_t samples, int line) {
+    bar.update(static_cast<double>(line) / total,
+               fmt::format("line {}/{}  {:.1f} M samples", line, total, static_cast<double>(samples) / 1e6));
+  };
 }
 
 std::function<void(double)> Progress::callback() {

@@ -6,6 +6,8 @@
 #include <string>
 #include <string_view>
 
+#include "stiffpath/job/job.hpp"
+
 namespace stiffpath::cli {
 
 //! Shows "label [#####     ]  42%  note" on one line of stderr, redrawn in place. It draws nothing
@@ -34,5 +36,8 @@ class Progress {
   std::chrono::steady_clock::time_point start_, last_;
   double delay_s_ = 0.5;
 };
+
+//! A job's progress on `bar` as the share of the G-code file's lines done; empty when the bar cannot draw.
+[[nodiscard]] job::Progress job_progress(const std::string& gcode_file, Progress& bar);
 
 }  // namespace stiffpath::cli

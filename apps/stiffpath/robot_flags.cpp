@@ -1,6 +1,7 @@
 // The robot and model flags shared by every command, and the names of tables on the command line.
 #include "robot_flags.hpp"
 
+#include "stiffpath/core/error.hpp"
 #include "stiffpath/measurement/displacement_table.hpp"
 
 namespace stiffpath::cli {
@@ -28,12 +29,35 @@ std::vector<core::NamedPath> robot_inputs(const kinematics::Robot& robot, bool w
   return inputs;
 }
 
-void add_model_flags(CLI::App* cmd, compliance::ModelRequest& request) {
-  cmd->add_option("--model", request.model,
+void add_model_flags(CLI::App* cmd, ModelFlags& flags) {
+  cmd->add_option("--model", flags.model,
                   "Compliance model file or built-in (thesis-oc, thesis-sc[-<method>]); default: the robot's own");
-  cmd->add_option("--method", request.method,
-                  "Fit the robot's table with this method (bilinear, symmetric, physical, physical-0, physical-2, physical-spline, auto)");
-  cmd->add_flag("--force-model", request.force, "Use a model even if it was fitted for another robot geometry");
+  cmd->add_option("--method", flags.method,
+                  "Fit the robot's table with this method (" + core::enum_choices<compliance::FitMethod>() +
+                      "; auto: the one cross-validation favours)");
+  cmd->add_flag("--force-model", flags.force, "Use a model even if it was fitted for another robot geometry");
+}
+
+compliance::ModelRequest model_request(const ModelFlags& flags) {
+  compliance::ModelRequest request;
+  request.model = flags.model;
+  request.force = flags.force;
+  if (!flags.method.empty()) {
+    request.refit = true;
+    try {
+      request.method = compliance::parse_fit_method(flags.method);
+    } catch (const Error& e) {
+      throw Error("--method: " + e.message());
+    }
+  }
+  return request;
+}
+
+measurement::DataCheckOptions data_check_options(const kinematics::Robot& robot) {
+  measurement::DataCheckOptions options;
+  if (robot.replica) options.ul_m = robot.replica->ul_m;
+  options.mirror_symmetric = robot.geometry.mirror_symmetric_about_x();
+  return options;
 }
 
 core::DataRef table_ref(const std::string& argument) {

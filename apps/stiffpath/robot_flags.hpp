@@ -9,6 +9,7 @@
 #include "stiffpath/core/data_ref.hpp"
 #include "stiffpath/core/distinct_files.hpp"
 #include "stiffpath/kinematics/robot.hpp"
+#include "stiffpath/measurement/data_check.hpp"
 
 namespace stiffpath::cli {
 
@@ -26,8 +27,21 @@ kinematics::Robot load_robot_flag(const std::string& robot);
 std::vector<core::NamedPath> robot_inputs(const kinematics::Robot& robot, bool with_data = true,
                                           std::vector<core::NamedPath> more = {});
 
-//! Registers --model, --method and --force-model into `request`.
-void add_model_flags(CLI::App* cmd, compliance::ModelRequest& request);
+//! The model flags as given: --model, --method, --force-model.
+struct ModelFlags {
+  std::string model;   //!< a model file or built-in name; empty: the robot's own
+  std::string method;  //!< refit the robot's table: a method's name or auto; empty: no refit
+  bool force = false;
+};
+
+//! Registers --model, --method and --force-model into `flags`.
+void add_model_flags(CLI::App* cmd, ModelFlags& flags);
+//! The library's request from the flags; throws stiffpath::Error "--method: …" for an unknown method.
+compliance::ModelRequest model_request(const ModelFlags& flags);
+
+//! The data checks as they apply to `robot`: |UL| of its replica (none: angles unchecked) and whether symmetry
+//! about y = 0 is expected (its geometry is its own mirror image).
+measurement::DataCheckOptions data_check_options(const kinematics::Robot& robot);
 
 //! A displacement table named on the command line: "thesis" for the built-in data set, a file, or
 //! "builtin:<path>".

@@ -34,7 +34,7 @@ void add_twin_flags(CLI::App* cmd, TwinFlags& f, simulation::SimulationOptions& 
 }
 
 void apply_twin_flags(const TwinFlags& f, simulation::SimulationOptions& sim, simulation::TrueComplianceOptions& truth) {
-  truth.family = f.truth;
+  truth.family = core::parse_enum<simulation::TrueFamily>(f.truth);
   sim.plant.servo_feels_load = f.servo == "loaded";
   sim.plant.load_feedforward_from_command = f.feedforward_from == "command";
 }

@@ -15,7 +15,7 @@
 #include "stiffpath/compliance/model_factory.hpp"
 #include "stiffpath/compliance/model_file.hpp"
 #include "stiffpath/core/error.hpp"
-#include "stiffpath/job/job.hpp"
+#include "stiffpath/job/prepared_job.hpp"
 #include "stiffpath/job/joint_writer.hpp"
 #include "stiffpath/kinematics/robot.hpp"
 #include "stiffpath/measurement/displacement_table.hpp"
@@ -82,12 +82,17 @@ void ik(int nlhs, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
 // P = stiffpath('fk', robot, Q): Q N×2 (rad) → N×2 (m).
 void fk(int, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
   need(nrhs, 3, "p_m = stiffpath('fk', robot, q_rad)  % q_rad: N×2 in rad");
-  const auto five_bar = stiffpath::kinematics::load_robot(text_arg(prhs[1], "robot")).five_bar();
+  const auto robot = stiffpath::kinematics::load_robot(text_arg(prhs[1], "robot"));
   const Matrix q = matrix_arg(prhs[2], "q_rad", 2, 2);
   plhs[0] = new_matrix(q.rows, 2);
   double* p = mxGetPr(plhs[0]);
   for (std::size_t i = 0; i < q.rows; ++i) {
-    const Vec2 point = five_bar.forward(Vec2(q(i, 0), q(i, 1)));
+    Vec2 point;
+    try {
+      point = robot.forward(Vec2(q(i, 0), q(i, 1)));  // finite, within the joints' ranges (as `kin fk`)
+    } catch (const stiffpath::Error& e) {
+      throw stiffpath::Error("q_rad row " + std::to_string(i + 1) + ": " + e.message());
+    }
     p[i] = point.x();
     p[q.rows + i] = point.y();
   }
@@ -101,7 +106,8 @@ void fit(int, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
   const auto table = table_path.empty() ? stiffpath::compliance::robot_table(robot)
                                         : stiffpath::measurement::load_displacement_table(table_path);
   const std::string rows = table_path.empty() ? "" : robot.compliance.rows;
-  const auto fitted = stiffpath::compliance::fit_model(table, rows, text_arg(prhs[3], "method"),
+  const auto fitted = stiffpath::compliance::fit_model(table, rows,
+                                                       stiffpath::compliance::parse_fit_method(text_arg(prhs[3], "method")),
                                                        stiffpath::compliance::ForceConvention::measured, robot);
   const std::string out = text_arg(prhs[4], "model_file");
   if (!out.empty()) stiffpath::compliance::save_model(out, *fitted.model, fitted.provenance);
@@ -175,28 +181,22 @@ void plan(int, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
 }
 
 // The rows of a trajectory matrix as the job's sample source.
-class MatrixSource final : public stiffpath::motion::SampleSource {
- public:
-  explicit MatrixSource(Matrix m) : m_(m) {}
-  std::optional<stiffpath::motion::TrajectorySample> next() override {
-    if (i_ == m_.rows) return std::nullopt;
-    stiffpath::motion::TrajectorySample s;
-    const auto col = [&](std::size_t c) { return c < m_.cols ? m_(i_, c) : 0.0; };
+// The rows of T as the planned samples of a job.
+std::vector<stiffpath::motion::TrajectorySample> samples_of(const Matrix& m) {
+  std::vector<stiffpath::motion::TrajectorySample> out(m.rows);
+  for (std::size_t i = 0; i < m.rows; ++i) {
+    const auto col = [&](std::size_t c) { return c < m.cols ? m(i, c) : 0.0; };
+    auto& s = out[i];
     s.t_s = col(0);
     s.position_m = Vec2(col(1), col(2));
     s.velocity_m_s = Vec2(col(3), col(4));
     s.acceleration_m_s2 = Vec2(col(5), col(6));
     s.jerk_m_s3 = Vec2(col(7), col(8));
     s.laser_on = col(9) != 0.0;
-    s.line = static_cast<int>(i_ + 1);
-    ++i_;
-    return s;
+    s.line = static_cast<int>(i + 1);
   }
-
- private:
-  Matrix m_;
-  std::size_t i_ = 0;
-};
+  return out;
+}
 
 class MatrixWriter final : public stiffpath::job::JointWriter {
  public:
@@ -209,6 +209,7 @@ class MatrixWriter final : public stiffpath::job::JointWriter {
 double number_field(const mxArray* options, const char* name, double fallback) {
   const mxArray* f = options != nullptr ? mxGetField(options, 0, name) : nullptr;
   if (f == nullptr) return fallback;
+  if (mxIsLogical(f) && mxGetNumberOfElements(f) == 1) return mxIsLogicalScalarTrue(f) ? 1.0 : 0.0;  // true / false
   if (!mxIsDouble(f) || mxIsComplex(f) || mxGetNumberOfElements(f) != 1) {
     throw UsageError(std::string("options.") + name + " must be a real number");
   }
@@ -229,41 +230,34 @@ void compensate(int, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
   if (nrhs != 4 && nrhs != 5) {
     throw UsageError("usage: Q = stiffpath('compensate', robot, model, T [, options])  % model '' = the robot's own");
   }
-  const auto robot = stiffpath::kinematics::load_robot(text_arg(prhs[1], "robot"));
-  const std::string model_name = text_arg(prhs[2], "model");
-  stiffpath::compliance::ModelRequest request;
-  request.model = model_name;
-  auto loaded = stiffpath::compliance::load_robot_model(robot, request);
+  // The job `run` makes, with its defaults (job::JobSpec), from the planned samples T.
+  stiffpath::job::JobSpec spec = stiffpath::job::default_job(stiffpath::kinematics::load_robot(text_arg(prhs[1], "robot")));
+  spec.model.request.model = text_arg(prhs[2], "model");
+  spec.model.request.how_to_force = "set options.force_model = true";
   const mxArray* options = nullptr;
-  stiffpath::compensation::CompensatorOptions comp;
-  comp.method = stiffpath::compensation::Method::dynamic;
-  stiffpath::compensation::RunFilterOptions filter;
   if (nrhs == 5) {
     if (mxIsStruct(prhs[4]) && mxGetNumberOfElements(prhs[4]) == 1) {
       options = prhs[4];
     } else if (mxIsDouble(prhs[4]) && mxGetNumberOfElements(prhs[4]) == 1) {
-      comp.gain = mxGetScalar(prhs[4]);
+      spec.gain = mxGetScalar(prhs[4]);
     } else {
       throw UsageError("options must be a struct (gain, method, damping_ratio, smooth_s, shaper) or the gain");
     }
   }
-  comp.gain = number_field(options, "gain", comp.gain);
-  comp.method = stiffpath::compensation::parse_method(text_field(options, "method", "dynamic"));
-  comp.damping_ratio = number_field(options, "damping_ratio", robot.tip_damping_ratio);
-  filter.smooth_s = number_field(options, "smooth_s", filter.smooth_s);
-  filter.shaper = stiffpath::compensation::parse_filter_kind(text_field(options, "shaper", "none"));
-  filter.damping_ratio = *comp.damping_ratio;
-  const std::shared_ptr<const stiffpath::compliance::Model> model(std::move(loaded.model));
-  const stiffpath::compensation::Compensator compensator(robot, model, comp);
+  spec.gain = number_field(options, "gain", spec.gain);
+  spec.model.request.force = number_field(options, "force_model", 0.0) != 0.0;
+  spec.method = stiffpath::core::parse_enum<stiffpath::compensation::Method>(
+      text_field(options, "method", std::string(stiffpath::core::enum_name(spec.method))));
+  if (options != nullptr && mxGetField(options, 0, "damping_ratio") != nullptr) {
+    spec.damping_ratio = number_field(options, "damping_ratio", 0.0);
+  }
+  if (options != nullptr && mxGetField(options, 0, "smooth_s") != nullptr) spec.smooth_s = number_field(options, "smooth_s", 0.0);
+  spec.shaper = stiffpath::core::parse_enum<stiffpath::compensation::FilterKind>(text_field(options, "shaper", "none"));
   const Matrix trajectory = matrix_arg(prhs[3], "T", 7, 10);
-  auto region = stiffpath::compliance::GridBounds::none();
-  for (std::size_t i = 0; i < trajectory.rows; ++i) region.include(Vec2(trajectory(i, 1), trajectory(i, 2)));
-  stiffpath::compensation::FilterChain filters = stiffpath::compensation::make_run_filters(
-      stiffpath::motion::default_sample_rate_hz, filter, model, robot.moving_mass_kg, region);
-  MatrixSource source(trajectory);
+  const stiffpath::job::PreparedJob prepared =
+      stiffpath::job::prepare(std::move(spec), stiffpath::job::Program::samples(samples_of(trajectory), "T"));
   MatrixWriter writer;
-  stiffpath::job::run_job(source, compensator, &writer, "T", stiffpath::motion::default_sample_rate_hz,
-                          stiffpath::job::AccelerationSource::analytic, {}, &filters);
+  stiffpath::job::run(prepared, &writer);
   const std::size_t n = writer.commands.size();
   plhs[0] = new_matrix(n, 11);
   double* q = mxGetPr(plhs[0]);
@@ -275,13 +269,58 @@ void compensate(int, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
   }
 }
 
+// J = stiffpath('run', gcode_file, robot [, options]): the main job exactly as `stiffpath run` makes it (job::JobSpec,
+// the defaults every surface shares) → N×10 [t θ1 θ2 ω1 ω2 α1 α2 laser power line] (SI). options: a struct with any
+// of thesis (true: the thesis's method), compensate (false: without compensation), method, gain, damping_ratio,
+// smooth_s, shaper, accel_m_s2, jerk_m_s3, rate_hz. The first refused sample is an error naming its G-code line.
+void run(int, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
+  if (nrhs != 3 && nrhs != 4) throw UsageError("usage: J = stiffpath('run', gcode_file, robot [, options])");
+  const std::string file = text_arg(prhs[1], "gcode_file");
+  const auto robot = stiffpath::kinematics::load_robot(text_arg(prhs[2], "robot"));
+  const mxArray* o = nullptr;
+  if (nrhs == 4) {
+    if (!mxIsStruct(prhs[3]) || mxGetNumberOfElements(prhs[3]) != 1) throw UsageError("options must be a struct");
+    o = prhs[3];
+  }
+  const auto has = [&](const char* name) { return o != nullptr && mxGetField(o, 0, name) != nullptr; };
+  stiffpath::job::JobSpec spec =
+      has("thesis") && number_field(o, "thesis", 0.0) != 0.0 ? stiffpath::job::thesis_job(robot) : stiffpath::job::default_job(robot);
+  if (has("model")) spec.model.request.model = text_field(o, "model", "");
+  spec.model.request.force = number_field(o, "force_model", 0.0) != 0.0;
+  spec.model.request.how_to_force = "set options.force_model = true";
+  if (has("compensate")) spec.compensate = number_field(o, "compensate", 1.0) != 0.0;
+  if (has("method")) spec.method = stiffpath::core::parse_enum<stiffpath::compensation::Method>(text_field(o, "method", ""));
+  spec.gain = number_field(o, "gain", spec.gain);
+  if (has("damping_ratio")) spec.damping_ratio = number_field(o, "damping_ratio", 0.0);
+  if (has("smooth_s")) spec.smooth_s = number_field(o, "smooth_s", 0.0);
+  if (has("shaper")) spec.shaper = stiffpath::core::parse_enum<stiffpath::compensation::FilterKind>(text_field(o, "shaper", ""));
+  auto& limits = spec.plan.limits;
+  limits.max_acceleration_m_s2 = number_field(o, "accel_m_s2", limits.max_acceleration_m_s2);
+  limits.max_jerk_m_s3 = number_field(o, "jerk_m_s3", stiffpath::motion::default_jerk_m_s3(limits.max_acceleration_m_s2));
+  spec.plan.rate_hz = number_field(o, "rate_hz", spec.plan.rate_hz);
+  spec.plan.gcode.home_position_m = robot.home_m;
+  const stiffpath::job::PreparedJob prepared = stiffpath::job::prepare(std::move(spec), stiffpath::job::Program::file(file));
+  stiffpath::job::check_output(prepared, "-");  // the matrix is kept in memory: the cap of a written job holds
+  MatrixWriter writer;
+  stiffpath::job::run(prepared, &writer);
+  const std::size_t n = writer.commands.size();
+  plhs[0] = new_matrix(n, 10);
+  double* q = mxGetPr(plhs[0]);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& c = writer.commands[i];
+    const double row[10] = {c.t_s, c.q_rad.x(), c.q_rad.y(), c.qd_rad_s.x(), c.qd_rad_s.y(), c.qdd_rad_s2.x(),
+                            c.qdd_rad_s2.y(), c.laser_on ? 1.0 : 0.0, c.power, static_cast<double>(c.line)};
+    for (std::size_t k = 0; k < 10; ++k) q[k * n + i] = row[k];
+  }
+}
+
 using Command = void (*)(int, mxArray*[], int, const mxArray*[]);
 
 const std::map<std::string, Command>& commands() {
   static const std::map<std::string, Command> table{{"ik", ik},           {"fk", fk},
                                                     {"fit", fit},         {"predict", predict},
                                                     {"compliance", compliance}, {"plan", plan},
-                                                    {"compensate", compensate}};
+                                                    {"compensate", compensate}, {"run", run}};
   return table;
 }
 
@@ -289,10 +328,10 @@ const std::map<std::string, Command>& commands() {
 // raises the MATLAB error, which does not return (mexErrMsgIdAndTxt unwinds without running destructors).
 std::string dispatch(int nlhs, mxArray* plhs[], int nrhs, const mxArray* prhs[], std::string& id) {
   try {
-    if (nrhs < 1) throw UsageError("usage: stiffpath(command, …) with command ik, fk, fit, predict, compliance, plan, compensate");
+    if (nrhs < 1) throw UsageError("usage: stiffpath(command, …) with command ik, fk, fit, predict, compliance, plan, compensate, run");
     const std::string name = text_arg(prhs[0], "command");
     const auto found = commands().find(name);
-    if (found == commands().end()) throw UsageError("unknown command '" + name + "' (ik, fk, fit, predict, compliance, plan, compensate)");
+    if (found == commands().end()) throw UsageError("unknown command '" + name + "' (ik, fk, fit, predict, compliance, plan, compensate, run)");
     found->second(nlhs, plhs, nrhs, prhs);
     return {};
   } catch (const stiffpath::Error& e) {

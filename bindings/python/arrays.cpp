@@ -99,4 +99,39 @@ std::string describe_point(const Vec2& p_m) {
   return fmt::format("(x = {:.6g} mm, y = {:.6g} mm)", p_m.x() * 1e3, p_m.y() * 1e3);
 }
 
+motion::TrajectorySample to_sample(const TrajectoryRow& r) noexcept {
+  motion::TrajectorySample s;
+  s.t_s = r.t_s;
+  s.position_m = Vec2(r.p_m[0], r.p_m[1]);
+  s.velocity_m_s = Vec2(r.v_m_s[0], r.v_m_s[1]);
+  s.acceleration_m_s2 = Vec2(r.a_m_s2[0], r.a_m_s2[1]);
+  s.jerk_m_s3 = Vec2(r.j_m_s3[0], r.j_m_s3[1]);
+  s.laser_on = r.laser;
+  s.power = r.power;
+  s.line = r.line;
+  return s;
+}
+
+JointRow to_row(const compensation::JointCommand& c) noexcept {
+  return {c.t_s,
+          {c.q_rad.x(), c.q_rad.y()},
+          {c.qd_rad_s.x(), c.qd_rad_s.y()},
+          {c.qdd_rad_s2.x(), c.qdd_rad_s2.y()},
+          {c.target_m.x(), c.target_m.y()},
+          {c.command_m.x(), c.command_m.y()},
+          {c.force_N.x(), c.force_N.y()},
+          {c.deflection_m.x(), c.deflection_m.y()},
+          c.laser_on,
+          c.power,
+          c.outside_grid,
+          static_cast<std::int32_t>(c.line)};
+}
+
+py::array RowWriter::array() const {
+  ensure_record_dtypes();
+  py::array_t<JointRow> out(static_cast<py::ssize_t>(rows.size()));
+  std::copy(rows.begin(), rows.end(), out.mutable_data());
+  return out;
+}
+
 }  // namespace stiffpath::python

@@ -8,7 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "stiffpath/compensation/samples.hpp"
+#include "stiffpath/job/joint_writer.hpp"
 #include "stiffpath/kinematics/types.hpp"
+#include "stiffpath/motion/planned_segment.hpp"
 
 namespace stiffpath::python {
 
@@ -66,6 +69,20 @@ struct JointRow {
   double power;
   bool outside_grid;
   std::int32_t line;
+};
+
+//! A trajectory record as the planner's sample, and a joint command as a joint record.
+motion::TrajectorySample to_sample(const TrajectoryRow& row) noexcept;
+JointRow to_row(const compensation::JointCommand& command) noexcept;
+
+//! A job's sink that keeps every command as a joint record (the joints array's records).
+class RowWriter final : public job::JointWriter {
+ public:
+  void write(const compensation::JointCommand& command) override { rows.push_back(to_row(command)); }
+  void finish() override {}
+  //! The records as a new array of stiffpath.joints_dtype.
+  [[nodiscard]] py::array array() const;
+  std::vector<JointRow> rows;
 };
 
 //! Registers the record dtypes with pybind11 on first use (this imports NumPy, which `import stiffpath` does not:

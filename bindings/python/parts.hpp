@@ -28,5 +28,6 @@ void add_compliance(py::module_& m);   //!< DisplacementTable, Model, fit, cv, l
 void add_motion(py::module_& m);       //!< plan
 void add_compensation(py::module_& m); //!< Compensator, JointCommand, compensate
 void add_twin(py::module_& m);         //!< true_compliance, simulate, run_metrics, path_metrics
+void add_job(py::module_& m);          //!< run: the main job as `stiffpath run`
 
 }  // namespace stiffpath::python

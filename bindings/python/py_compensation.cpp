@@ -8,8 +8,7 @@
 #include "stiffpath/compensation/compensator.hpp"
 #include "stiffpath/compensation/run_filters.hpp"
 #include "stiffpath/core/error.hpp"
-#include "stiffpath/job/job.hpp"
-#include "stiffpath/job/joint_writer.hpp"
+#include "stiffpath/job/prepared_job.hpp"
 #include "stiffpath/motion/sampler.hpp"
 
 namespace stiffpath::python {
@@ -19,52 +18,6 @@ namespace {
 using compensation::Compensator;
 using compensation::JointCommand;
 
-// The rows of a trajectory array as the job's sample source.
-class RowSource final : public motion::SampleSource {
- public:
-  RowSource(const TrajectoryRow* rows, std::size_t n) : rows_(rows), n_(n) {}
-  std::optional<motion::TrajectorySample> next() override {
-    if (i_ == n_) return std::nullopt;
-    const TrajectoryRow& r = rows_[i_++];
-    motion::TrajectorySample s;
-    s.t_s = r.t_s;
-    s.position_m = Vec2(r.p_m[0], r.p_m[1]);
-    s.velocity_m_s = Vec2(r.v_m_s[0], r.v_m_s[1]);
-    s.acceleration_m_s2 = Vec2(r.a_m_s2[0], r.a_m_s2[1]);
-    s.jerk_m_s3 = Vec2(r.j_m_s3[0], r.j_m_s3[1]);
-    s.laser_on = r.laser;
-    s.power = r.power;
-    s.line = r.line;
-    return s;
-  }
-
- private:
-  const TrajectoryRow* rows_;
-  std::size_t n_;
-  std::size_t i_ = 0;
-};
-
-// Keeps every command in memory, as the joints array's records.
-class RowWriter final : public job::JointWriter {
- public:
-  void write(const JointCommand& c) override {
-    rows.push_back({c.t_s,
-                    {c.q_rad.x(), c.q_rad.y()},
-                    {c.qd_rad_s.x(), c.qd_rad_s.y()},
-                    {c.qdd_rad_s2.x(), c.qdd_rad_s2.y()},
-                    {c.target_m.x(), c.target_m.y()},
-                    {c.command_m.x(), c.command_m.y()},
-                    {c.force_N.x(), c.force_N.y()},
-                    {c.deflection_m.x(), c.deflection_m.y()},
-                    c.laser_on,
-                    c.power,
-                    c.outside_grid,
-                    static_cast<std::int32_t>(c.line)});
-  }
-  void finish() override {}
-  std::vector<JointRow> rows;
-};
-
 struct PyCompensator {
   std::shared_ptr<Compensator> compensator;
   PyModel model;
@@ -72,50 +25,49 @@ struct PyCompensator {
 
 PyCompensator make_compensator(const kinematics::Robot& robot, const std::optional<PyModel>& model, double gain,
                                bool enabled, bool check_limits, const std::string& method,
-                               std::optional<double> damping_ratio) {
+                               std::optional<double> damping_ratio, bool force_model) {
   PyModel used = model ? *model : to_py_model(compliance::load_robot_model(robot));
   if (model) {
     compliance::LoadedModel check{nullptr, used.provenance, used.label};
-    compliance::check_model_geometry(check, robot, false);
+    compliance::check_model_geometry(check, robot, force_model, "pass force_model=True");
   }
   const compensation::CompensatorOptions options{.gain = gain,
                                                  .enabled = enabled,
                                                  .check_limits = check_limits,
-                                                 .method = compensation::parse_method(method),
+                                                 .method = core::parse_enum<compensation::Method>(method),
                                                  .damping_ratio = damping_ratio};
   auto compensator = std::make_shared<Compensator>(robot, used.model, options);
   return {std::move(compensator), std::move(used)};
 }
 
-// The filters `stiffpath run` puts before compensation; a shaper's frequency bound is the tip's lowest natural
-// frequency over the rectangle the trajectory covers (run takes it over the planned job's region the same way).
-compensation::FilterChain job_filters(const PyCompensator& c, const TrajectoryRow* rows, std::size_t n, double rate_hz,
-                                      double smooth_s, const std::string& shaper) {
-  compensation::RunFilterOptions options;
-  options.smooth_s = smooth_s;
-  options.shaper = compensation::parse_filter_kind(shaper);
-  options.damping_ratio = *c.compensator->options().damping_ratio;
-  auto region = compliance::GridBounds::none();
-  for (std::size_t i = 0; i < n; ++i) region.include(Vec2(rows[i].p_m[0], rows[i].p_m[1]));
-  return compensation::make_run_filters(rate_hz, options, c.model.model, c.compensator->robot().moving_mass_kg, region);
-}
-
-py::array compensate(const PyCompensator& c, const py::handle& trajectory_in,
-                     const std::string& acceleration, double rate_hz, double smooth_s, const std::string& shaper,
-                     const std::string& label) {
+// A whole trajectory through the job `run` makes from this compensator's settings: the same reference filters
+// (their defaults: job::JobSpec's), the same checks, the same commands.
+py::array compensate(const PyCompensator& c, const py::handle& trajectory_in, const std::string& acceleration,
+                     double rate_hz, std::optional<double> smooth_s, const std::string& shaper, const std::string& label) {
   const auto trajectory = trajectory_records(trajectory_in, "trajectory");
-  const auto source_kind = job::parse_acceleration_source(acceleration);
-  const auto n = static_cast<std::size_t>(trajectory.size());
-  RowSource source(trajectory.data(), n);
+  const compensation::CompensatorOptions& o = c.compensator->options();
+  job::JobSpec spec = job::default_job(c.compensator->robot());
+  spec.model.given = c.model.model;
+  spec.model.given_label = c.model.label;
+  spec.compensate = o.enabled;
+  spec.gain = o.gain;
+  spec.check_limits = o.check_limits;
+  spec.method = o.method;
+  spec.damping_ratio = o.damping_ratio;
+  spec.acceleration = core::parse_enum<job::AccelerationSource>(acceleration);
+  spec.smooth_s = smooth_s;
+  spec.shaper = core::parse_enum<compensation::FilterKind>(shaper);
+  spec.plan.rate_hz = rate_hz;
+  std::vector<motion::TrajectorySample> samples;
+  samples.reserve(static_cast<std::size_t>(trajectory.size()));
+  for (py::ssize_t i = 0; i < trajectory.size(); ++i) samples.push_back(to_sample(trajectory.data()[i]));
   RowWriter writer;
   {
     py::gil_scoped_release unlocked;
-    compensation::FilterChain filters = job_filters(c, trajectory.data(), n, rate_hz, smooth_s, shaper);
-    job::run_job(source, *c.compensator, &writer, label, rate_hz, source_kind, {}, &filters);
+    const job::PreparedJob prepared = job::prepare(std::move(spec), job::Program::samples(std::move(samples), label));
+    job::run(prepared, &writer);
   }
-  py::array_t<JointRow> out(static_cast<py::ssize_t>(writer.rows.size()));
-  std::copy(writer.rows.begin(), writer.rows.end(), out.mutable_data());
-  return out;
+  return writer.array();
 }
 
 Vec2 pair_of(const py::handle& value, const char* what) {
@@ -151,14 +103,16 @@ void add_compensation(py::module_& m) {
                             "The compensation step of thesis fig. 4.3 for one robot and compliance model: F = −m·a at the\n"
                             "CG (eq. 4.4), Δ = C(p)·F (eqs. 4.6–4.7, 4.12), p_cmd = p − k·Δ, θ = IK(p_cmd), then the\n"
                             "reach and joint-limit checks.")
-      .def(py::init(&make_compensator), py::arg("robot"), py::arg("model") = py::none(), py::arg("gain") = 1.0,
-           py::arg("enabled") = true, py::arg("check_limits") = true, py::kw_only(), py::arg("method") = "dynamic",
-           py::arg("damping_ratio") = py::none(),
+      .def(py::init(&make_compensator), py::arg("robot"), py::arg("model") = py::none(), py::arg("gain") = job::JobSpec{}.gain,
+           py::arg("enabled") = true, py::arg("check_limits") = true, py::kw_only(),
+           py::arg("method") = std::string(core::enum_name(job::JobSpec{}.method)),
+           py::arg("damping_ratio") = py::none(), py::arg("force_model") = false,
            "robot: a Robot. model: a Model (default: the robot's own, as the CLI's run). gain: k (≥ 0).\n"
            "enabled=False gives the uncompensated command p_cmd = p. A model fitted for another geometry is refused.\n"
            "method: 'dynamic' (default, as `stiffpath run`: the damped tip's lag inverted, p_cmd = p + k·δ) or\n"
            "'quasi-static' (the thesis's p_cmd = p − k·C(p)·F). damping_ratio: ζ of the tip's modes the dynamic\n"
-           "method assumes (0 … 2; default None: the robot file's tip_damping_ratio, 0.05 when it gives none).")
+           "method assumes (0 … 2; default None: the robot file's tip_damping_ratio, 0.05 when it gives none).\n"
+           "force_model=True: accept a model fitted for another robot geometry.")
       .def_property_readonly("model", [](const PyCompensator& c) { return c.model; })
       .def_property_readonly("robot", [](const PyCompensator& c) { return c.compensator->robot(); })
       .def("step",
@@ -178,17 +132,17 @@ void add_compensation(py::module_& m) {
            py::arg("s_m_s4") = py::make_tuple(0.0, 0.0),
            "One sample of the planned path (t in s; p, v, a, jerk, snap as (x, y) pairs in m, m/s, m/s², m/s³, m/s⁴) →\n"
            "JointCommand. Never raises for a bad sample: check .ok / .status, as a servo loop would.")
-      .def_property_readonly("method", [](const PyCompensator& c) { return std::string(compensation::to_string(c.compensator->options().method)); })
+      .def_property_readonly("method", [](const PyCompensator& c) { return std::string(core::enum_name(c.compensator->options().method)); })
       .def_property_readonly("damping_ratio", [](const PyCompensator& c) { return *c.compensator->options().damping_ratio; })
       .def("compensate", &compensate, py::arg("trajectory"), py::arg("acceleration") = "analytic",
            py::arg("rate_hz") = motion::default_sample_rate_hz, py::kw_only(),
-           py::arg("smooth_s") = compensation::RunFilterOptions{}.smooth_s, py::arg("shaper") = "none",
+           py::arg("smooth_s") = py::none(), py::arg("shaper") = "none",
            py::arg("label") = "<trajectory>",
            "A whole trajectory (dtype stiffpath.trajectory_dtype, e.g. from plan) → joint commands (dtype\n"
            "stiffpath.joints_dtype: t_s, q_rad, qd_rad_s, qdd_rad_s2, target_m, command_m, force_N, deflection_m,\n"
            "laser, power, outside_grid, line), as `stiffpath run` writes them, with run's reference filters before\n"
-           "compensation: smooth_s (s, default 0.008: two moving averages of half that width, continuous jerk and\n"
-           "snap; 0 = off) and shaper ('none', 'zv', 'zvd': an input shaper following the tip's frequency). The\n"
+           "compensation: smooth_s (s; default None: 0.008 when compensating, two moving averages of half that width\n"
+           "for continuous jerk and snap, and 0 without compensation; 0 = off) and shaper ('none', 'zv', 'zvd': an input shaper following the tip's frequency). The\n"
            "filters lengthen the job by their delay. acceleration: 'analytic' (the profile's) or\n"
            "'numeric' (second difference of the positions at rate_hz, the thesis's §4.3). The first refused sample\n"
            "raises stiffpath.Error naming the label, the G-code line, the time and the limit.");

@@ -25,6 +25,12 @@ namespace {
 
 using measurement::DisplacementTable;
 
+// The fit method's name, or None for a model not fitted from a table.
+py::object method_name(const compliance::Model& model) {
+  const auto method = model.method();
+  return method ? py::object(py::str(std::string(core::enum_name(*method)))) : py::object(py::none());
+}
+
 // The first point the model's `error` policy refuses raises stiffpath.Error naming it.
 void check_inside(const PyModel& m, const double* p, std::size_t n) {
   for (std::size_t i = 0; i < n; ++i) {
@@ -178,8 +184,9 @@ void add_compliance(py::module_& m) {
   py::class_<PyModel>(m, "Model",
                       "A compliance model of the platform point: Δ = C(p)·F (thesis eqs. 4.6–4.7; the bilinear grid\n"
                       "model is eq. 4.12). Shared with the compensators built from it.")
-      .def_property_readonly("method", [](const PyModel& p) { return p.model->method(); },
-                             "'bilinear', 'symmetric', 'physical', 'physical-0', 'physical-2' or 'physical-spline'")
+      .def_property_readonly("method", [](const PyModel& p) { return method_name(*p.model); },
+                             "'bilinear', 'symmetric', 'physical', 'physical-0', 'physical-2' or 'physical-spline'; None\n"
+                             "for a model not fitted from a table (the twin's structural truth)")
       .def_readonly("label", &PyModel::label, "'thesis-oc', a file's path, or 'physical fitted to <table>'")
       .def_property_readonly("robot", [](const PyModel& p) { return p.provenance.robot; },
                              "name of the robot it was fitted for")
@@ -189,16 +196,16 @@ void add_compliance(py::module_& m) {
         return py::make_tuple(b.x_min, b.x_max, b.y_min, b.y_max);
       }, "measured rectangle (x_min, x_max, y_min, y_max) in m")
       .def_property("outside",
-                    [](const PyModel& p) { return std::string(compliance::to_string(p.model->outside_policy())); },
+                    [](const PyModel& p) { return std::string(core::enum_name(p.model->outside_policy())); },
                     [](PyModel& p, const std::string& policy) {
-                      p.model->set_outside_policy(compliance::parse_outside_policy(policy));
+                      p.model->set_outside_policy(core::parse_enum<compliance::OutsidePolicy>(policy));
                     },
                     "what the model does outside its rectangle: 'error' (refuse beyond 1 mm), 'clamp', 'extrapolate'")
       .def_property("zero_force",
-                    [](const PyModel& p) { return std::string(compliance::to_string(p.model->zero_force())); },
-                    [](PyModel& p, const std::string& mode) { p.model->set_zero_force(compliance::parse_zero_force(mode)); },
+                    [](const PyModel& p) { return std::string(core::enum_name(p.model->zero_force())); },
+                    [](PyModel& p, const std::string& mode) { p.model->set_zero_force(core::parse_enum<compliance::ZeroForce>(mode)); },
                     "'relative' (Δ(p, F) − Δ(p, 0), default) or 'thesis_raw' (eq. 4.8's intercepts included)")
-      .def("parameters", [](const PyModel& p) { return to_python(p.model->parameters()); },
+      .def("parameters", [](const PyModel& p) { return to_python(compliance::model_parameters(*p.model)); },
            "The fitted parameters (grid nodes or D(p) coefficients), as in model files.")
       .def("C", &model_compliance, py::arg("x_m"), py::arg("y_m"),
            "Compliance matrix C = ∂Δ/∂F (m/N) at points x_m, y_m (arrays broadcast together) → (..., 2, 2).")
@@ -208,32 +215,37 @@ void add_compliance(py::module_& m) {
            "The model-file document as a dict.")
       .def("save", [](const PyModel& p, const std::string& path) { compliance::save_model(path, *p.model, p.provenance); },
            py::arg("path"), "Writes the model file (JSON, atomically), readable by load_model and the CLI.")
-      .def("__repr__", [](const PyModel& p) { return fmt::format("Model('{}', method='{}')", p.label, p.model->method()); });
+      .def("__repr__", [](const PyModel& p) { return fmt::format("Model('{}', method='{}')", p.label, p.model->description()); });
 
   m.def("load_model", [](const std::string& name) { return to_py_model(compliance::load_model(name)); },
         py::arg("name_or_path"),
         "A built-in model ('thesis-oc', 'thesis-sc', 'thesis-oc-<method>') or a model file written by Model.save or\n"
         "`stiffpath fit -o`.");
-  m.def("methods", &compliance::method_names, "Names of the fitting methods.");
+  m.def("methods", &core::enum_name_list<compliance::FitMethod>, "Names of the fitting methods.");
   m.def(
       "fit",
       [](const DisplacementTable& table, const kinematics::Robot& robot, const std::string& method,
          const std::optional<std::string>& rows, const std::string& forces) {
-        const auto convention = compliance::parse_force_convention(forces);
+        const auto convention = core::parse_enum<compliance::ForceConvention>(forces);
+        const auto fit_method = compliance::parse_fit_method(method);
         py::gil_scoped_release unlocked;
-        return to_py_model(compliance::fit_model(table, rows.value_or(robot.compliance.rows), method, convention, robot));
+        return to_py_model(compliance::fit_model(table, rows.value_or(robot.compliance.rows), fit_method, convention, robot));
       },
       py::arg("table"), py::arg("robot"), py::arg("method") = "auto", py::arg("rows") = py::none(),
       py::arg("forces") = "measured",
       "Fits a compliance model to a displacement table for a robot (thesis eqs. 4.8–4.12 for 'bilinear').\n\n"
       "method: one of methods(), or 'auto' for the one leave-one-out cross-validation favours.\n"
       "rows: the table's mechanism rows ('OC', 'SC'); default the robot's own.\n"
-      "forces: 'measured' (table 2.1's kgf relative to step 0) or 'nominal' (the rounded 50…250 N).");
+      "forces: 'measured' (the table's F_N, relative to step 0) or 'nominal' (its F_nominal_N column: the\n"
+      "round loads the campaign names; a table without that column is refused).");
   m.def(
       "robot_model",
       [](const kinematics::Robot& robot, const std::string& method) {
         compliance::ModelRequest request;
-        request.method = method;
+        if (!method.empty()) {
+          request.refit = true;
+          request.method = compliance::parse_fit_method(method);
+        }
         py::gil_scoped_release unlocked;
         return to_py_model(compliance::load_robot_model(robot, request));
       },
@@ -248,7 +260,7 @@ void add_compliance(py::module_& m) {
       .def_readonly("mean_abs_error_um", &compliance::CvPoint::mean_abs_error_um, "mean |Δ component error| (µm)")
       .def_readonly("mean_vector_error_um", &compliance::CvPoint::mean_vector_error_um, "mean |Δ error| (µm)");
   py::class_<compliance::CvMethod>(m, "CvMethod", "Leave-one-out result of one method.")
-      .def_readonly("method", &compliance::CvMethod::method)
+      .def_property_readonly("method", [](const compliance::CvMethod& c) { return std::string(core::enum_name(c.method)); })
       .def_readonly("description", &compliance::CvMethod::description)
       .def_readonly("points", &compliance::CvMethod::points)
       .def_readonly("predicted", &compliance::CvMethod::predicted, "number of points it could predict")
@@ -256,7 +268,7 @@ void add_compliance(py::module_& m) {
       .def_readonly("max_um", &compliance::CvMethod::max_um, "largest error (µm)")
       .def_readonly("interior_mean_um", &compliance::CvMethod::interior_mean_um, "mean over the interior points (µm)")
       .def("__repr__", [](const compliance::CvMethod& c) {
-        return fmt::format("CvMethod('{}', mean {:.1f} µm over {} points)", c.method, c.mean_um, c.predicted);
+        return fmt::format("CvMethod('{}', mean {:.1f} µm over {} points)", core::enum_name(c.method), c.mean_um, c.predicted);
       });
   py::class_<compliance::CvReport>(m, "CvReport", "Leave-one-out cross-validation of every method on a table.")
       .def_readonly("source", &compliance::CvReport::source)
@@ -265,17 +277,17 @@ void add_compliance(py::module_& m) {
       .def_readonly("methods", &compliance::CvReport::methods)
       .def_property_readonly("skipped", [](const compliance::CvReport& r) {
         py::dict out;
-        for (const auto& s : r.skipped) out[py::str(s.method)] = s.reason;
+        for (const auto& s : r.skipped) out[py::str(std::string(core::enum_name(s.method)))] = s.reason;
         return out;
       }, "{method: why it could not run}")
-      .def_property_readonly("favoured", [](const compliance::CvReport& r) { return compliance::favoured_method(r); },
+      .def_property_readonly("favoured", [](const compliance::CvReport& r) { return std::string(core::enum_name(compliance::favoured_method(r))); },
                              "the method with the smallest mean error over the points all methods predict");
   m.def(
       "cv",
       [](const DisplacementTable& table, const kinematics::Robot& robot, const std::optional<std::string>& rows,
          const std::string& forces, const std::string& zero_force) {
-        const auto convention = compliance::parse_force_convention(forces);
-        const auto zero = compliance::parse_zero_force(zero_force);
+        const auto convention = core::parse_enum<compliance::ForceConvention>(forces);
+        const auto zero = core::parse_enum<compliance::ZeroForce>(zero_force);
         const std::string name = rows.value_or(robot.compliance.rows);
         const auto selected = table.filter(name);
         if (selected.rows.empty()) throw Error(SourceLocation{table.source}, "no rows with mechanism '" + name + "'");

@@ -8,6 +8,7 @@
 #include "parts.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/kinematics/robot.hpp"
+#include "stiffpath/kinematics/robot_json.hpp"
 
 namespace stiffpath::python {
 
@@ -57,9 +58,13 @@ py::array_t<double> robot_fk(const Robot& robot, const py::handle& q_rad) {
   double* out = p.mutable_data();
   const auto n = static_cast<std::size_t>(angles.size() / 2);
   py::gil_scoped_release unlocked;
-  const kinematics::FiveBar five_bar = robot.five_bar();
   for (std::size_t i = 0; i < n; ++i) {
-    const Vec2 point = five_bar.forward(Vec2(in[2 * i], in[2 * i + 1]));
+    Vec2 point;
+    try {
+      point = robot.forward(Vec2(in[2 * i], in[2 * i + 1]));  // finite, within the joints' ranges (as `kin fk`)
+    } catch (const Error& e) {
+      throw Error(fmt::format("q_rad[{}]: {}", i, e.message()));
+    }
     out[2 * i] = point.x();
     out[2 * i + 1] = point.y();
   }

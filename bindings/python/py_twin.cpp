@@ -71,7 +71,7 @@ PySimulation simulate(const kinematics::Robot& robot, const py::handle& joints_i
   options.plant.load_feedforward_from_command = load_feedforward_from == "command";
   options.plant.servo_feels_load = servo == "loaded";
   simulation::TrueComplianceOptions truth_options;
-  truth_options.family = truth_family;
+  truth_options.family = core::parse_enum<simulation::TrueFamily>(truth_family);
   truth_options.perturbation = perturbation;
   truth_options.seed = seed;
   PySimulation out;
@@ -122,7 +122,7 @@ void add_twin(py::module_& m) {
         simulation::TrueComplianceOptions options;
         options.perturbation = perturbation;
         options.seed = seed;
-        options.family = family;
+        options.family = core::parse_enum<simulation::TrueFamily>(family);
         const auto truth = simulation::make_true_compliance(robot, options);
         return PyModel{std::const_pointer_cast<compliance::Model>(truth), {}, "true compliance of " + robot.name};
       },

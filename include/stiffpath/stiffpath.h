@@ -42,7 +42,7 @@ extern "C" {
 #endif
 
 /** Version of this interface; changes when a struct below or a function's meaning changes. */
-#define STIFFPATH_C_API_VERSION 1
+#define STIFFPATH_C_API_VERSION 2
 
 /** Outcome of a call. Anything but STIFFPATH_OK from a step means: do not send this command. */
 typedef enum stiffpath_status {
@@ -53,7 +53,9 @@ typedef enum stiffpath_status {
   STIFFPATH_JOINT_POSITION = 4,      /**< a joint angle outside the robot's range */
   STIFFPATH_JOINT_VELOCITY = 5,      /**< a joint speed above the robot's limit */
   STIFFPATH_JOINT_ACCELERATION = 6,  /**< a joint acceleration above the robot's limit */
-  STIFFPATH_INVALID_ARGUMENT = 7     /**< a NULL pointer where an object was needed */
+  STIFFPATH_INVALID_ARGUMENT = 7,    /**< a NULL pointer where an object was needed */
+  STIFFPATH_BAD_INPUT = 8,           /**< a job's robot, model, program or option was refused: see the error text */
+  STIFFPATH_STOPPED = 9              /**< a job's sink asked it to stop */
 } stiffpath_status;
 
 /** What the compliance model does with a point outside its measured grid. */
@@ -66,9 +68,16 @@ typedef enum stiffpath_outside_policy {
 
 /** How the deflection is predicted (stiffpath_options.method). */
 typedef enum stiffpath_method {
-  STIFFPATH_METHOD_QUASI_STATIC = 0, /**< the thesis's static deflection Δ = C·F (default) */
-  STIFFPATH_METHOD_DYNAMIC = 1       /**< the tip model with its damping inverted (docs/compensation.md) */
+  STIFFPATH_METHOD_QUASI_STATIC = 0, /**< the thesis's static deflection Δ = C·F */
+  STIFFPATH_METHOD_DYNAMIC = 1       /**< the tip model with its damping inverted (default; docs/compensation.md) */
 } stiffpath_method;
+
+/** A reference filter's shaper (stiffpath_job_options.shaper). */
+typedef enum stiffpath_shaper {
+  STIFFPATH_SHAPER_NONE = 0, /**< no shaper (default) */
+  STIFFPATH_SHAPER_ZV = 1,   /**< ZV input shaper following the tip's frequency */
+  STIFFPATH_SHAPER_ZVD = 2   /**< ZVD input shaper */
+} stiffpath_shaper;
 
 /** A robot description (geometry, mass, limits), loaded from a robot file or a preset. Opaque. */
 typedef struct stiffpath_robot stiffpath_robot;
@@ -81,7 +90,8 @@ typedef struct stiffpath_options {
   int enabled;          /**< 0: p_cmd = p, the "without compensation" command (default 1) */
   int check_limits;     /**< check reach and joint limits on every step (default 1) */
   int outside_policy;   /**< a stiffpath_outside_policy (default STIFFPATH_OUTSIDE_MODEL_DEFAULT) */
-  int method;           /**< a stiffpath_method (default STIFFPATH_METHOD_QUASI_STATIC; 0 keeps older callers' behaviour) */
+  int method;           /**< a stiffpath_method (default STIFFPATH_METHOD_DYNAMIC, as every surface; a zeroed
+                             struct asks for STIFFPATH_METHOD_QUASI_STATIC: start from stiffpath_default_options()) */
   double damping_ratio; /**< ζ of the tip's modes for STIFFPATH_METHOD_DYNAMIC, 0..2; negative (the default, -1):
                              the robot file's tip_damping_ratio, 0.05 when it gives none */
 } stiffpath_options;
@@ -112,7 +122,30 @@ typedef struct stiffpath_joint_command {
   int status;               /**< a stiffpath_status */
   int joint;                /**< offending joint (0, 1) for the STIFFPATH_JOINT_* statuses, else −1 */
   int outside_grid;         /**< 1 if p was outside the model's grid (clamped or extrapolated) */
+  int laser;                /**< 1 while the laser fires (a job's command; the step copies 0) */
+  double power;             /**< laser power as a fraction of full power, 0..1 (a job's command; the step copies 0) */
+  int line;                 /**< the G-code line (a job's command; the step copies 0) */
 } stiffpath_joint_command;
+
+/** Settings of a whole job (stiffpath_run_job): what `stiffpath run` takes; stiffpath_default_job_options()
+ *  gives the defaults every surface shares (docs/compensation.md). */
+typedef struct stiffpath_job_options {
+  stiffpath_options compensation; /**< gain, enabled (0: without compensation, the planned path as it is), limits,
+                                       outside policy, method, damping ratio */
+  int thesis;                     /**< 1: the thesis's method (bilinear model of the robot's table, quasi-static, no
+                                       reference filter), overriding method, model, smooth_s and shaper (default 0) */
+  double smooth_s;                /**< total smoothing width before compensation, s, 0..1; negative (default −1):
+                                       0.008 when compensating, 0 without */
+  int shaper;                     /**< a stiffpath_shaper (default none) */
+  double max_velocity_m_s;        /**< speed limit, also of G0 (default 2) */
+  double max_acceleration_m_s2;   /**< path acceleration limit (default 5 g = 49.03325) */
+  double max_jerk_m_s3;           /**< jerk limit; 0 (default): the acceleration over 5 ms; negative: the
+                                       acceleration times the tip's lowest natural frequency on the job */
+  double rate_hz;                 /**< command rate (default 2000) */
+} stiffpath_job_options;
+
+/** Receives a job's commands one by one, in order; returning non-zero stops the job (STIFFPATH_STOPPED). */
+typedef int (*stiffpath_command_sink)(const stiffpath_joint_command *command, void *user);
 
 /** The limits of one actuated joint. */
 typedef struct stiffpath_joint_limit {
@@ -135,6 +168,8 @@ STIFFPATH_C_API int stiffpath_c_api_version(void) STIFFPATH_NOEXCEPT;
 STIFFPATH_C_API const char *stiffpath_status_text(int status) STIFFPATH_NOEXCEPT;
 /** The documented defaults of stiffpath_options. */
 STIFFPATH_C_API stiffpath_options stiffpath_default_options(void) STIFFPATH_NOEXCEPT;
+/** The documented defaults of stiffpath_job_options (those of `stiffpath run`). */
+STIFFPATH_C_API stiffpath_job_options stiffpath_default_job_options(void) STIFFPATH_NOEXCEPT;
 
 /** Loads a robot: a preset name ("oc-gu", "oc-gl", "sc-gu", "sc-gl") or the path of a robot file.
  *  Not real-time (reads files, allocates). On failure returns NULL and writes a message naming the
@@ -174,6 +209,17 @@ STIFFPATH_C_API const stiffpath_robot *stiffpath_compensator_robot(const stiffpa
  *  NULL. */
 STIFFPATH_C_API int stiffpath_compensator_step(const stiffpath_compensator *compensator,
                                                const stiffpath_task_sample *sample, stiffpath_joint_command *out) STIFFPATH_NOEXCEPT;
+
+/** The main job, exactly as `stiffpath run` makes it (not real-time: it plans, allocates and uses a second
+ *  thread): plans the G-code file `gcode_path` for `robot` (a preset or robot file) with `model` (NULL/"": the
+ *  robot's own), compensates every sample and hands each command, with its laser state, power and G-code line, to
+ *  `sink` (from a second thread, one at a time, in order). options may be NULL (defaults). Returns STIFFPATH_OK;
+ *  STIFFPATH_BAD_INPUT with the reason (file, line, column) in `error`; the status of the first refused sample
+ *  (a STIFFPATH_JOINT_* or other step status) with its G-code line, time and limit in `error`; STIFFPATH_STOPPED
+ *  when the sink returned non-zero; STIFFPATH_INVALID_ARGUMENT for a NULL robot, program or sink. */
+STIFFPATH_C_API int stiffpath_run_job(const char *robot, const char *model, const char *gcode_path,
+                                      const stiffpath_job_options *options, stiffpath_command_sink sink, void *user,
+                                      char *error, size_t error_size) STIFFPATH_NOEXCEPT;
 
 #ifdef __cplusplus
 }

@@ -24,20 +24,6 @@ const char* describe(Status status) noexcept {
   return "unknown";
 }
 
-const char* to_string(Method method) noexcept {
-  switch (method) {
-    case Method::quasi_static: return "quasi-static";
-    case Method::dynamic: return "dynamic";
-  }
-  return "unknown";
-}
-
-Method parse_method(const std::string& text) {
-  if (text == "quasi-static") return Method::quasi_static;
-  if (text == "dynamic") return Method::dynamic;
-  throw Error("compensation method must be quasi-static or dynamic, got '" + text + "'");
-}
-
 namespace {
 constexpr double kDerivativeStep_m = 1e-4;  // the model's change along the path is taken over ±0.1 mm
 constexpr double kMaxTimeStep_s = 1e-3;     // … or ±1 ms of the local motion when moving slowly
@@ -192,7 +178,8 @@ void Compensator::finish(const TaskSample& s, const Lookup& lookup, const std::a
       // δ = δ₀ − T·δ̇₀ + T²·δ̈₀ − T³·δ⃛₀ solves δ + T·δ̇ = δ₀ wherever d⁴δ₀/dt⁴ = 0 (constant crackle, as
       // in the smoothed plans). δ⃛₀ = m·(C·c + 3·Ċ·s + 3·C̈·j) (C⃛ dropped); the rates use T's own rates
       // Ṫ, T̈ from T at the neighbouring points and drop products of two of them and d⁴δ₀/dt⁴.
-      const double zeta = *options_.damping_ratio;
+      // T = 2ζ√(m·C)/s_f: a tip that rings s_f times faster than m·C implies has that much shorter a time constant.
+      const double zeta = *options_.damping_ratio / spec_.tip_frequency_scale;
       const Mat2 T = tip_time_constant(C, m, zeta);
       const Mat2 T_after = tip_time_constant(C_after, m, zeta), T_before = tip_time_constant(C_before, m, zeta);
       const Mat2 T_dot = (T_after - T_before) * (0.5 * inverse_h);

@@ -10,24 +10,6 @@
 
 namespace stiffpath::compensation {
 
-const char* to_string(FilterKind kind) noexcept {
-  switch (kind) {
-    case FilterKind::none: return "none";
-    case FilterKind::smooth: return "smooth";
-    case FilterKind::zv: return "zv";
-    case FilterKind::zvd: return "zvd";
-  }
-  return "unknown";
-}
-
-FilterKind parse_filter_kind(const std::string& text) {
-  if (text == "none") return FilterKind::none;
-  if (text == "smooth") return FilterKind::smooth;
-  if (text == "zv") return FilterKind::zv;
-  if (text == "zvd") return FilterKind::zvd;
-  throw Error("reference filter must be none, smooth, zv or zvd, got '" + text + "'");
-}
-
 FilterSample point_sample(const TaskSample& s) noexcept {
   FilterSample f;
   f.t_s = s.t_s;

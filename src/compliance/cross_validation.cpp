@@ -43,7 +43,7 @@ std::vector<const PointSample*> reference_samples(const PointSamples& point) {
   return out;
 }
 
-CvMethod evaluate(const std::string& name, const std::string& description, const std::vector<PointSamples>& points,
+CvMethod evaluate(FitMethod name, const std::string& description, const std::vector<PointSamples>& points,
                   const std::vector<bool>& interior, ZeroForce zero_force, const Predictor& predict) {
   CvMethod m{name, description, {}, 0, 0.0, 0.0, 0.0, 0, 0, 0.0};
   double sum = 0.0, interior_sum = 0.0;
@@ -133,12 +133,17 @@ std::optional<Prediction> from_neighbours(const Grid& grid, const std::vector<Pr
 }
 
 // A physical method's model fitted to `points`.
-std::unique_ptr<Model> fit_physical_method(const std::string& method, const std::vector<PointSamples>& points,
+std::unique_ptr<Model> fit_physical_method(FitMethod method, const std::vector<PointSamples>& points,
                                            const kinematics::FiveBarGeometry& geometry, const std::string& source) {
-  if (method == "physical-spline") return fit_physical_spline_model(points, geometry, source, false);
-  const int order = method == "physical" ? 1 : method == "physical-0" ? 0 : method == "physical-2" ? 2 : -1;
-  if (order < 0) throw Error(fmt::format("unknown compliance method '{}'", method));
-  return fit_physical_model(points, geometry, order, source, false);
+  switch (method) {
+    case FitMethod::physical_spline: return fit_physical_spline_model(points, geometry, source, false);
+    case FitMethod::physical_0: return fit_physical_model(points, geometry, 0, source, false);
+    case FitMethod::physical: return fit_physical_model(points, geometry, 1, source, false);
+    case FitMethod::physical_2: return fit_physical_model(points, geometry, 2, source, false);
+    case FitMethod::bilinear:
+    case FitMethod::symmetric: break;
+  }
+  throw Error(fmt::format("{} is not a model-based compliance method", core::enum_name(method)));
 }
 }  // namespace
 
@@ -169,7 +174,7 @@ CvReport cross_validate(const std::vector<PointSamples>& points, const kinematic
   try {
     grid = Grid::from_positions(positions, node_of, source);
   } catch (const Error& e) {
-    for (const char* m : {"bilinear", "symmetric"}) {
+    for (const FitMethod m : {FitMethod::bilinear, FitMethod::symmetric}) {
       report.skipped.push_back({m, std::string("needs a full rectangular grid: ") + e.message()});
     }
   }
@@ -184,13 +189,13 @@ CvReport cross_validate(const std::vector<PointSamples>& points, const kinematic
       }
     } catch (const Error& e) {
       grid.reset();
-      for (const char* m : {"bilinear", "symmetric"}) report.skipped.push_back({m, e.message()});
+      for (const FitMethod m : {FitMethod::bilinear, FitMethod::symmetric}) report.skipped.push_back({m, e.message()});
     }
   }
   if (grid) {
     // The band of a held-out node: the grid method's uncertainty learnt from the other nodes whose neighbour
     // predictions do not use it.
-    const auto grid_method = [&](const char* name, const char* description, const std::vector<Prediction>& by_node) {
+    const auto grid_method = [&](FitMethod name, const char* description, const std::vector<Prediction>& by_node) {
       std::vector<LooCompliance> loo;
       if (with_uncertainty) loo = leave_one_out_compliance(name, points, geometry, source);
       report.methods.push_back(evaluate(name, description, points, interior, zero_force, [&](std::size_t k) {
@@ -207,17 +212,17 @@ CvReport cross_validate(const std::vector<PointSamples>& points, const kinematic
           }
           if (!residuals.empty() && rest.size() >= 4) {
             p->uncertainty = estimate_uncertainty(rest, residuals, UncertaintyBasis::interpolation,
-                                                  std::string(name) == "symmetric", source);
+                                                  name == FitMethod::symmetric, source);
           }
         }
         return p;
       }));
     };
-    grid_method("bilinear", "thesis eqs. 4.8-4.12: per-point fits, bilinear between points", bilinear);
-    grid_method("symmetric", "per-point fit with C = C^T > 0 (reciprocity), bilinear between", symmetric);
+    grid_method(FitMethod::bilinear, "thesis eqs. 4.8-4.12: per-point fits, bilinear between points", bilinear);
+    grid_method(FitMethod::symmetric, "per-point fit with C = C^T > 0 (reciprocity), bilinear between", symmetric);
   }
   // The model-based methods: refitted on every point but k, asked at k (extrapolating beyond the rest).
-  const auto refit_method = [&](const std::string& name, const std::string& description, auto fit) {
+  const auto refit_method = [&](FitMethod name, const std::string& description, auto fit) {
     try {
       report.methods.push_back(evaluate(name, description, points, interior, zero_force, [&](std::size_t k) {
         std::vector<PointSamples> rest;
@@ -235,19 +240,19 @@ CvReport cross_validate(const std::vector<PointSamples>& points, const kinematic
     }
   };
   for (int order = 0; order <= 2; ++order) {
-    refit_method(order == 1 ? "physical" : "physical-" + std::to_string(order),
+    refit_method(order == 0 ? FitMethod::physical_0 : order == 1 ? FitMethod::physical : FitMethod::physical_2,
                  "five-bar statics C = U^-T D(p) U^-1, D polynomial of order " + std::to_string(order),
                  [&](const std::vector<PointSamples>& rest) { return fit_physical_model(rest, geometry, order, source, false); });
   }
-  refit_method("physical-spline", "physical (order 1) + thin-plate smoothing spline of its residual at the points",
+  refit_method(FitMethod::physical_spline, "physical (order 1) + thin-plate smoothing spline of its residual at the points",
                [&](const std::vector<PointSamples>& rest) { return fit_physical_spline_model(rest, geometry, source, false); });
   return report;
 }
 
-std::vector<LooCompliance> leave_one_out_compliance(const std::string& method, const std::vector<PointSamples>& points,
+std::vector<LooCompliance> leave_one_out_compliance(FitMethod method, const std::vector<PointSamples>& points,
                                                     const kinematics::FiveBarGeometry& geometry, const std::string& source) {
   std::vector<LooCompliance> out(points.size());
-  if (method == "bilinear" || method == "symmetric") {
+  if (method == FitMethod::bilinear || method == FitMethod::symmetric) {
     std::vector<Vec2> positions;
     for (const auto& p : points) positions.push_back(p.position);
     std::vector<int> node_of;
@@ -257,7 +262,7 @@ std::vector<LooCompliance> leave_one_out_compliance(const std::string& method, c
     for (std::size_t k = 0; k < points.size(); ++k) {
       const auto node = static_cast<std::size_t>(node_of[k]);
       point_of[node] = k;
-      if (method == "bilinear") {
+      if (method == FitMethod::bilinear) {
         const PointFit f = fit_point(points[k], source);
         by_node[node] = {f.compliance(), f.offset(), std::nullopt};
       } else {
@@ -286,14 +291,14 @@ std::vector<LooCompliance> leave_one_out_compliance(const std::string& method, c
   return out;
 }
 
-std::string favoured_method(const CvReport& report, std::vector<std::pair<std::string, double>>* scores) {
+FitMethod favoured_method(const CvReport& report, std::vector<std::pair<FitMethod, double>>* scores) {
   if (report.methods.empty()) throw Error(SourceLocation{report.source}, "no compliance method can run on these points");
   // The points every method predicted.
   std::vector<bool> common(report.methods.front().points.size(), true);
   for (const auto& m : report.methods) {
     for (std::size_t k = 0; k < m.points.size() && k < common.size(); ++k) common[k] = common[k] && m.points[k].predicted;
   }
-  std::string best;
+  std::optional<FitMethod> best;
   double best_score = 0.0;
   for (const auto& m : report.methods) {
     double sum = 0.0;
@@ -306,12 +311,12 @@ std::string favoured_method(const CvReport& report, std::vector<std::pair<std::s
     }
     const double score = n > 0 ? sum / n : std::numeric_limits<double>::infinity();
     if (scores) scores->emplace_back(m.method, score);
-    if (best.empty() || score < best_score) {
+    if (!best || score < best_score) {
       best = m.method;
       best_score = score;
     }
   }
-  return best;
+  return *best;
 }
 
 }  // namespace stiffpath::compliance

@@ -26,7 +26,7 @@ void check_cv_budget(const std::vector<PointSamples>& points, const std::string&
   }
 }
 
-void check_fit_budget(const std::vector<PointSamples>& points, const std::string& method, const std::string& source) {
+void check_fit_budget(const std::vector<PointSamples>& points, std::optional<kinematics::FitMethod> method, const std::string& source) {
   const std::size_t samples = samples_of(points);
   if (samples > max_fit_samples) {
     throw Error(SourceLocation{source},
@@ -34,12 +34,12 @@ void check_fit_budget(const std::vector<PointSamples>& points, const std::string
                             "line fit needs a few load steps, not thousands)",
                             samples, points.size(), max_fit_samples));
   }
-  if (method == "physical-spline" && points.size() > max_spline_points) {
+  if (method == kinematics::FitMethod::physical_spline && points.size() > max_spline_points) {
     throw Error(SourceLocation{source},
                 fmt::format("LIMIT: {} points, more than the {} a physical-spline fit takes: name another method",
                             points.size(), max_spline_points));
   }
-  if (method.empty() || method == "auto") check_cv_budget(points, source);
+  if (!method) check_cv_budget(points, source);
 }
 
 }  // namespace stiffpath::compliance

@@ -8,7 +8,7 @@
 
 namespace stiffpath::compliance {
 
-GridModel::GridModel(std::string method, Grid grid, std::vector<GridNode> nodes)
+GridModel::GridModel(FitMethod method, Grid grid, std::vector<GridNode> nodes)
     : method_(std::move(method)), grid_(std::move(grid)), bounds_(grid_.bounds()), nodes_(std::move(nodes)) {
   if (nodes_.size() != grid_.xs.size() * grid_.ys.size()) {
     throw Error(fmt::format("grid model: {} nodes for a {} x {} grid", nodes_.size(), grid_.xs.size(), grid_.ys.size()));
@@ -87,7 +87,7 @@ nlohmann::json line_stats(const LineFit& f) {
 }
 }  // namespace
 
-std::unique_ptr<GridModel> build_grid_model(std::string method, const std::vector<Vec2>& positions,
+std::unique_ptr<GridModel> build_grid_model(FitMethod method, const std::vector<Vec2>& positions,
                                             const std::function<GridNode(std::size_t)>& make_node,
                                             const std::string& source) {
   std::vector<int> node_of;
@@ -100,7 +100,7 @@ std::unique_ptr<GridModel> build_grid_model(std::string method, const std::vecto
 std::unique_ptr<GridModel> make_bilinear_model(const std::vector<PointFit>& fits, const std::string& source) {
   std::vector<Vec2> positions;
   for (const auto& f : fits) positions.push_back(f.position);
-  return build_grid_model("bilinear", positions, [&](std::size_t k) {
+  return build_grid_model(FitMethod::bilinear, positions, [&](std::size_t k) {
     const PointFit& f = fits[k];
     return GridNode{f.id, f.compliance(), f.offset(),
                     {{"dx_fx", line_stats(f.dx_fx)}, {"dx_fy", line_stats(f.dx_fy)},

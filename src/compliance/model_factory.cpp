@@ -14,7 +14,11 @@
 
 namespace stiffpath::compliance {
 
-std::vector<std::string> method_names() { return {"bilinear", "symmetric", "physical", "physical-0", "physical-2", "physical-spline"}; }
+std::optional<FitMethod> parse_fit_method(std::string_view text) {
+  if (text == "auto") return std::nullopt;
+  if (const auto method = core::find_enum<FitMethod>(text)) return method;
+  throw Error(fmt::format("compliance method must be auto, {}, got '{}'", core::enum_choices<FitMethod>(), text));
+}
 
 namespace {
 std::string join(const std::vector<std::string>& items) {
@@ -26,8 +30,8 @@ std::string join(const std::vector<std::string>& items) {
 std::string short_hash(const kinematics::FiveBarGeometry& g) { return kinematics::geometry_hash(g).substr(0, 12); }
 }  // namespace
 
-LoadedModel fit_model(const measurement::DisplacementTable& table, const std::string& rows, const std::string& method,
-                      ForceConvention convention, const kinematics::Robot& robot) {
+LoadedModel fit_model(const measurement::DisplacementTable& table, const std::string& rows,
+                      std::optional<FitMethod> method, ForceConvention convention, const kinematics::Robot& robot) {
   const auto selected = table.filter(rows);
   if (selected.rows.empty()) {
     throw Error(SourceLocation{table.source},
@@ -36,40 +40,39 @@ LoadedModel fit_model(const measurement::DisplacementTable& table, const std::st
   const auto points = group_by_point(selected, convention);
   check_fit_budget(points, method, table.source);  // before any fit
   LoadedModel out;
-  out.provenance = {table.source, table.sha256, rows, convention, robot.name, robot.geometry, "named", nullptr, std::nullopt};
-  std::string chosen = method;
-  if (method.empty() || method == "auto") {
+  out.provenance = {table.source, table.sha256, rows, convention, robot.name, robot.geometry, MethodSelection::named, nullptr,
+                    std::nullopt};
+  FitMethod chosen = FitMethod::bilinear;
+  if (method) {
+    chosen = *method;
+  } else {
     const CvReport report = cross_validate(points, robot.geometry, table.source);
-    std::vector<std::pair<std::string, double>> scores;
+    std::vector<std::pair<FitMethod, double>> scores;
     chosen = favoured_method(report, &scores);
     nlohmann::json by_method = nlohmann::json::object(), skipped = nlohmann::json::object();
-    for (const auto& [name, score] : scores) by_method[name] = score;
-    for (const auto& s : report.skipped) skipped[s.method] = s.reason;
-    out.provenance.selected_by = "cross-validation";
+    for (const auto& [name, score] : scores) by_method[std::string(core::enum_name(name))] = score;
+    for (const auto& s : report.skipped) skipped[std::string(core::enum_name(s.method))] = s.reason;
+    out.provenance.selected_by = MethodSelection::cross_validation;
     out.provenance.selection = {{"criterion", "smallest mean leave-one-out error over the points every method predicts"},
                                 {"mean_error_um", by_method},
                                 {"could_not_run", skipped}};
   }
-  if (chosen == "bilinear") {
-    out.model = make_bilinear_model(fit_points(selected, convention), table.source);
-  } else if (chosen == "symmetric") {
-    out.model = make_symmetric_model(points, table.source);
-  } else if (chosen == "physical" || chosen == "physical-0" || chosen == "physical-2") {
-    const int order = chosen == "physical" ? 1 : chosen.back() - '0';
-    out.model = fit_physical_model(points, robot.geometry, order, table.source);
-  } else if (chosen == "physical-spline") {
-    out.model = fit_physical_spline_model(points, robot.geometry, table.source);
-  } else {
-    throw Error(fmt::format("unknown compliance method '{}' (known: {}, auto)", method, join(method_names())));
+  switch (chosen) {
+    case FitMethod::bilinear: out.model = make_bilinear_model(fit_points(selected, convention), table.source); break;
+    case FitMethod::symmetric: out.model = make_symmetric_model(points, table.source); break;
+    case FitMethod::physical_0: out.model = fit_physical_model(points, robot.geometry, 0, table.source); break;
+    case FitMethod::physical: out.model = fit_physical_model(points, robot.geometry, 1, table.source); break;
+    case FitMethod::physical_2: out.model = fit_physical_model(points, robot.geometry, 2, table.source); break;
+    case FitMethod::physical_spline: out.model = fit_physical_spline_model(points, robot.geometry, table.source); break;
   }
-  out.label = fmt::format("{} fitted to {}{}", chosen, table.source, rows.empty() ? "" : " rows " + rows);
+  out.label = fmt::format("{} fitted to {}{}", core::enum_name(chosen), table.source, rows.empty() ? "" : " rows " + rows);
   // A table whose displacements give a compliance that is not physical (negative, unbounded) is refused
   // here, where it enters, rather than reversing the correction where the model serves.
   if (const auto defect = find_model_defect(*out.model)) {
     throw Error(SourceLocation{table.source},
                 fmt::format("{}; no model made: the {} model fitted to this table{} gives it (check the table's "
                             "signs and units)",
-                            defect->describe(), chosen, rows.empty() ? "" : " (rows " + rows + ")"));
+                            defect->describe(), core::enum_name(chosen), rows.empty() ? "" : " (rows " + rows + ")"));
   }
   return out;
 }
@@ -80,12 +83,12 @@ void add_uncertainty(LoadedModel& loaded) {
   if (!p.geometry) throw Error(SourceLocation{loaded.label}, "the model records no robot geometry to refit with");
   const auto table = measurement::load_displacement_table(core::parse_data_ref(p.source)).filter(p.rows);
   // The method as fitted: a model file's "physical" with its order, as the method name fit_model uses.
-  std::string method = loaded.model->method();
-  if (const auto* physical = dynamic_cast<const PhysicalModel*>(loaded.model.get()); physical && physical->order() != 1) {
-    method = "physical-" + std::to_string(physical->order());
+  const std::optional<FitMethod> method = loaded.model->method();
+  if (!method) {
+    throw Error(SourceLocation{loaded.label}, fmt::format("{} is not a fitted model: no uncertainty to learn", loaded.model->description()));
   }
   loaded.provenance.uncertainty =
-      estimate_method_uncertainty(method, group_by_point(table, p.convention), *p.geometry, table.source);
+      estimate_method_uncertainty(*method, group_by_point(table, p.convention), *p.geometry, table.source);
 }
 
 bool is_builtin_model(const std::string& name) { return name.rfind("thesis-", 0) == 0; }
@@ -95,10 +98,10 @@ LoadedModel load_model(const std::string& name_or_path) {
   // thesis-<oc|sc>[-<method>]: the preset's own table, rows and geometry.
   const std::string rest = name_or_path.substr(7);
   const std::string build = rest.substr(0, 2);
-  const std::string method = rest.size() > 3 && rest[2] == '-' ? rest.substr(3) : "bilinear";
-  if ((build != "oc" && build != "sc") || (rest.size() > 2 && rest[2] != '-')) {
+  const auto method = rest.size() > 3 && rest[2] == '-' ? core::find_enum<FitMethod>(rest.substr(3)) : FitMethod::bilinear;
+  if ((build != "oc" && build != "sc") || (rest.size() > 2 && rest[2] != '-') || !method) {
     throw Error(fmt::format("unknown built-in model '{}' (use thesis-oc or thesis-sc, optionally with -<method>: {})",
-                            name_or_path, join(method_names())));
+                            name_or_path, core::enum_choices<FitMethod>()));
   }
   const kinematics::Robot robot = kinematics::load_robot(build + "-gu");
   LoadedModel out = fit_model(measurement::load_displacement_table(robot.compliance.table), robot.compliance.rows,
@@ -127,30 +130,33 @@ GridBounds table_region(const measurement::DisplacementTable& table) {
   return b;
 }
 
-void check_model_geometry(const LoadedModel& model, const kinematics::Robot& robot, bool force) {
+void check_model_geometry(const LoadedModel& model, const kinematics::Robot& robot, bool force,
+                          std::string_view how_to_force) {
   if (force) return;
   const Provenance& p = model.provenance;
   if (!p.geometry) {
     throw Error(fmt::format("model {} does not record the robot geometry it was fitted for (a file of format "
-                            "version 1): refit it for robot '{}' or pass --force-model",
-                            model.label, robot.name));
+                            "version 1): refit it for robot '{}' or {}",
+                            model.label, robot.name, how_to_force));
   }
   if (kinematics::geometry_hash(*p.geometry) != robot.geometry_hash()) {
     throw Error(fmt::format("model {} was fitted for robot '{}' (geometry {}), not for robot '{}' (geometry {}): fit "
-                            "one for this robot or pass --force-model",
-                            model.label, p.robot, short_hash(*p.geometry), robot.name, short_hash(robot.geometry)));
+                            "one for this robot or {}",
+                            model.label, p.robot, short_hash(*p.geometry), robot.name, short_hash(robot.geometry),
+                            how_to_force));
   }
 }
 
 LoadedModel load_robot_model(const kinematics::Robot& robot, const ModelRequest& request) {
   if (!request.model.empty()) {
     LoadedModel m = load_model(request.model);
-    check_model_geometry(m, robot, request.force);
+    check_model_geometry(m, robot, request.force, request.how_to_force);
     return m;
   }
-  if (request.method.empty() && !robot.compliance.model.empty()) {
+  const bool refit = request.refit || request.method.has_value();
+  if (!refit && !robot.compliance.model.empty()) {
     LoadedModel m = load_model_file(robot.compliance.model);
-    check_model_geometry(m, robot, request.force);
+    check_model_geometry(m, robot, request.force, request.how_to_force);
     return m;
   }
   if (robot.compliance.table.empty()) {
@@ -159,7 +165,7 @@ LoadedModel load_robot_model(const kinematics::Robot& robot, const ModelRequest&
                             "or a model with --model",
                             robot.name));
   }
-  const std::string method = !request.method.empty() ? request.method : robot.compliance.method;
+  const std::optional<FitMethod> method = refit ? request.method : robot.compliance.method;
   return fit_model(measurement::load_displacement_table(robot.compliance.table), robot.compliance.rows, method,
                    request.convention, robot);
 }

@@ -6,14 +6,17 @@
 #include <fmt/format.h>
 #include <numbers>
 
+#include "stiffpath/compliance/corrected_model.hpp"
 #include "stiffpath/compliance/grid_model.hpp"
 #include "stiffpath/compliance/physical_model.hpp"
 #include "stiffpath/compliance/physical_spline_model.hpp"
+#include "stiffpath/compliance/tool_point.hpp"
 #include "stiffpath/core/atomic_file.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/compliance/model_check.hpp"
 #include "stiffpath/core/json_fields.hpp"
 #include "stiffpath/kinematics/robot.hpp"
+#include "stiffpath/kinematics/robot_json.hpp"
 
 #ifndef STIFFPATH_VERSION
 #define STIFFPATH_VERSION "0.1.0"
@@ -21,20 +24,43 @@
 
 namespace stiffpath::compliance {
 
+nlohmann::json model_parameters(const Model& model) {
+  // The models a file can hold, each with its own parameters; a wrapper adds its part to its base's.
+  if (const auto* m = dynamic_cast<const CorrectedModel*>(&model)) return m->parameters();
+  if (const auto* m = dynamic_cast<const ToolPointModel*>(&model)) return m->parameters();
+  if (const auto* m = dynamic_cast<const PhysicalSplineModel*>(&model)) return m->parameters();
+  if (const auto* m = dynamic_cast<const PhysicalModel*>(&model)) return m->parameters();
+  if (const auto* m = dynamic_cast<const GridModel*>(&model)) return m->parameters();
+  return {{"description", model.description()}};
+}
+
+namespace {
+// The method key of a model file: a physical model of any order is "physical" with its `order` beside it.
+std::string model_file_method(const Model& model) {
+  const auto method = model.method();
+  if (!method) throw Error("only a model fitted from a displacement table can be saved, not a " + model.description());
+  switch (*method) {
+    case FitMethod::physical_0:
+    case FitMethod::physical_2: return "physical";
+    default: return std::string(core::enum_name(*method));
+  }
+}
+}  // namespace
+
 nlohmann::json model_to_json(const Model& model, const Provenance& provenance) {
   nlohmann::json doc = {
       {"format", kModelFormat},
       {"version", kModelFormatVersion},
-      {"method", model.method()},
+      {"method", model_file_method(model)},
       {"units", {{"length", "mm"}, {"compliance", "um/N"}, {"deflection", "um"}}},
-      {"outside_policy", to_string(model.outside_policy())},
-      {"zero_force", to_string(model.zero_force())},
+      {"outside_policy", core::enum_name(model.outside_policy())},
+      {"zero_force", core::enum_name(model.zero_force())},
       {"provenance",
        {{"source", provenance.source},
         {"sha256", provenance.sha256},
         {"rows", provenance.rows},
-        {"force_convention", to_string(provenance.convention)},
-        {"method_selected_by", provenance.selected_by},
+        {"force_convention", core::enum_name(provenance.convention)},
+        {"method_selected_by", core::enum_name(provenance.selected_by)},
         {"created_by", std::string("stiffpath ") + STIFFPATH_VERSION}}},
   };
   if (!provenance.selection.is_null()) doc["provenance"]["selection"] = provenance.selection;
@@ -43,7 +69,7 @@ nlohmann::json model_to_json(const Model& model, const Provenance& provenance) {
                     {"geometry", kinematics::geometry_to_json(*provenance.geometry)},
                     {"geometry_sha256", kinematics::geometry_hash(*provenance.geometry)}};
   }
-  doc.update(model.parameters());
+  doc.update(model_parameters(model));
   if (provenance.uncertainty) {
     const PredictionUncertainty& u = *provenance.uncertainty;
     const auto um2 = [](const std::array<double, 4>& v) {
@@ -103,7 +129,7 @@ Mat2 matrix(const core::JsonObject& obj, std::string_view key) {
   return m;
 }
 
-std::unique_ptr<Model> grid_model_from(const core::JsonObject& root, const std::string& method) {
+std::unique_ptr<Model> grid_model_from(const core::JsonObject& root, FitMethod method) {
   const core::JsonObject grid_obj = root.object("grid");
   Grid grid;
   for (double x : numbers(grid_obj, "x_mm", 0)) grid.xs.push_back(x * 1e-3);
@@ -249,6 +275,29 @@ PredictionUncertainty uncertainty_from(const core::JsonObject& u) {
   return out;
 }
 
+// A calibration's correction over the model just read (corrected_model.hpp).
+std::unique_ptr<Model> corrected_from(const core::JsonObject& c, std::unique_ptr<Model> base) {
+  c.allow_only({"origin_mm", "half_size_mm", "sx", "sy"});
+  ComplianceCorrection correction;
+  const auto [ox, oy] = c.pair("origin_mm");
+  const auto [hx, hy] = c.pair("half_size_mm");
+  if (!(hx > 0.0 && hy > 0.0)) c.fail("half_size_mm", "must be two positive lengths");
+  correction.origin_m = {ox * 1e-3, oy * 1e-3};
+  correction.half_size_m = {hx * 1e-3, hy * 1e-3};
+  for (const char* key : {"sx", "sy"}) {
+    const auto v = numbers(c, key, 3);
+    for (const double x : v) {
+      if (std::abs(x) > 100.0) c.fail(key, fmt::format("RANGE: coefficients must lie within ±100, got {}", x));
+    }
+    (key[1] == 'x' ? correction.sx : correction.sy) = {v[0], v[1], v[2]};
+  }
+  try {
+    return std::make_unique<CorrectedModel>(std::shared_ptr<Model>(std::move(base)), correction);
+  } catch (const Error& e) {
+    c.fail("sx", e.message());
+  }
+}
+
 // The robot block of a version-2 file: the geometry, checked against its recorded hash.
 kinematics::FiveBarGeometry recorded_geometry(const core::JsonObject& robot) {
   const core::JsonObject g = robot.object("geometry");
@@ -292,7 +341,7 @@ LoadedModel model_from_json(const core::JsonDocument& document) {
   }
   const std::string method = root.string("method");
   if (method == "bilinear" || method == "symmetric") {
-    out.model = grid_model_from(root, method);
+    out.model = grid_model_from(root, *core::find_enum<FitMethod>(method));
   } else if (method == "physical") {
     out.model = physical_model_from(root, out.provenance.geometry);
   } else if (method == "physical-spline") {
@@ -300,6 +349,7 @@ LoadedModel model_from_json(const core::JsonDocument& document) {
   } else {
     root.fail("method", "'" + method + "' is not one of bilinear, symmetric, physical, physical-spline");
   }
+  if (root.has("correction")) out.model = corrected_from(root.object("correction"), std::move(out.model));
   // Physics bounds the model, whatever its parameters: wherever it serves, every compliance is finite,
   // within ±1000 um/N and positive definite (model_check.hpp).
   if (const auto defect = find_model_defect(*out.model)) {
@@ -314,14 +364,16 @@ LoadedModel model_from_json(const core::JsonDocument& document) {
       obj.fail(key, e.message());
     }
   };
-  out.model->set_outside_policy(parsed(root, "outside_policy", parse_outside_policy));
-  out.model->set_zero_force(parsed(root, "zero_force", parse_zero_force));
+  out.model->set_outside_policy(parsed(root, "outside_policy", core::parse_enum<OutsidePolicy>));
+  out.model->set_zero_force(parsed(root, "zero_force", core::parse_enum<ZeroForce>));
   const core::JsonObject prov = root.object("provenance");
   out.provenance.source = prov.string("source");
   out.provenance.sha256 = prov.string("sha256");
   out.provenance.rows = prov.has("rows") ? prov.string("rows") : prov.has("mechanism") ? prov.string("mechanism") : "";
-  out.provenance.convention = parsed(prov, "force_convention", parse_force_convention);
-  if (prov.has("method_selected_by")) out.provenance.selected_by = prov.string("method_selected_by");
+  out.provenance.convention = parsed(prov, "force_convention", core::parse_enum<ForceConvention>);
+  if (prov.has("method_selected_by")) {
+    out.provenance.selected_by = parsed(prov, "method_selected_by", core::parse_enum<MethodSelection>);
+  }
   if (prov.has("selection")) out.provenance.selection = prov.raw()["selection"];
   if (root.has("uncertainty")) out.provenance.uncertainty = uncertainty_from(root.object("uncertainty"));
   return out;

@@ -8,6 +8,7 @@
 
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/kinematics/robot.hpp"
+#include "stiffpath/kinematics/robot_json.hpp"
 
 namespace stiffpath::compliance {
 

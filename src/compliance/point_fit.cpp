@@ -9,16 +9,6 @@
 
 namespace stiffpath::compliance {
 
-const char* to_string(ForceConvention convention) noexcept {
-  return convention == ForceConvention::measured ? "measured" : "nominal";
-}
-
-ForceConvention parse_force_convention(const std::string& text) {
-  if (text == "measured") return ForceConvention::measured;
-  if (text == "nominal") return ForceConvention::nominal;
-  throw Error("force convention '" + text + "' is not one of measured, nominal");
-}
-
 Mat2 PointFit::compliance() const noexcept {
   Mat2 c;
   c << dx_fx.slope, dx_fy.slope, dy_fx.slope, dy_fy.slope;

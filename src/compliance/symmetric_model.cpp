@@ -76,7 +76,7 @@ GridNode fit_symmetric_node(const PointSamples& point, const std::string& source
 std::unique_ptr<GridModel> make_symmetric_model(const std::vector<PointSamples>& points, const std::string& source) {
   std::vector<Vec2> positions;
   for (const auto& p : points) positions.push_back(p.position);
-  return build_grid_model("symmetric", positions, [&](std::size_t k) { return fit_symmetric_node(points[k], source); },
+  return build_grid_model(FitMethod::symmetric, positions, [&](std::size_t k) { return fit_symmetric_node(points[k], source); },
                           source);
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "stiffpath/compliance/model_file.hpp"
 #include "stiffpath/core/error.hpp"
 
 namespace stiffpath::compliance {
@@ -11,7 +12,7 @@ namespace stiffpath::compliance {
 std::unique_ptr<GridModel> make_angular_model(const std::vector<PointFit>& fits, const std::string& source) {
   std::vector<Vec2> positions;
   for (const auto& f : fits) positions.push_back(f.position);
-  return build_grid_model("angular", positions, [&](std::size_t k) {
+  return build_grid_model(FitMethod::bilinear, positions, [&](std::size_t k) {
     const auto a = fits[k].angular_compliance();
     if (!a) {
       throw Error(SourceLocation{source},
@@ -42,7 +43,7 @@ Mat2 ToolPointModel::lever(const Vec2& p) const noexcept {
 Mat2 ToolPointModel::compliance(const Vec2& p) const noexcept { return at_G_->compliance(p) + lever(p); }
 
 nlohmann::json ToolPointModel::parameters() const {
-  nlohmann::json out = at_G_->parameters();
+  nlohmann::json out = model_parameters(*at_G_);
   out["tool_point"] = {{"distance_below_G_mm", d_ * 1e3}, {"angular", angular_->parameters()}};
   return out;
 }

@@ -103,8 +103,8 @@ double student_t_975(int dof) noexcept {
 
 double PredictionUncertainty::band_factor() const noexcept { return student_t_975(degrees_of_freedom); }
 
-UncertaintyBasis uncertainty_basis(const std::string& method) {
-  return method == "physical" || method == "physical-0" || method == "physical-2" ? UncertaintyBasis::stationary
+UncertaintyBasis uncertainty_basis(FitMethod method) {
+  return method == FitMethod::physical || method == FitMethod::physical_0 || method == FitMethod::physical_2 ? UncertaintyBasis::stationary
                                                                                   : UncertaintyBasis::interpolation;
 }
 
@@ -204,7 +204,7 @@ PredictionUncertainty estimate_uncertainty(const std::vector<PointSamples>& trai
   return u;
 }
 
-PredictionUncertainty estimate_method_uncertainty(const std::string& method, const std::vector<PointSamples>& points,
+PredictionUncertainty estimate_method_uncertainty(FitMethod method, const std::vector<PointSamples>& points,
                                                   const kinematics::FiveBarGeometry& geometry, const std::string& source) {
   const auto predictions = leave_one_out_compliance(method, points, geometry, source);
   std::vector<LooResidual> loo;
@@ -212,7 +212,7 @@ PredictionUncertainty estimate_method_uncertainty(const std::string& method, con
     if (!predictions[k].predicted) continue;
     loo.push_back({points[k].position, *predictions[k].predicted - fit_point(points[k], source).compliance()});
   }
-  return estimate_uncertainty(points, loo, uncertainty_basis(method), method != "bilinear", source);
+  return estimate_uncertainty(points, loo, uncertainty_basis(method), method != FitMethod::bilinear, source);
 }
 
 }  // namespace stiffpath::compliance

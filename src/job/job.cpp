@@ -12,12 +12,6 @@
 
 namespace stiffpath::job {
 
-AccelerationSource parse_acceleration_source(const std::string& text) {
-  if (text == "analytic") return AccelerationSource::analytic;
-  if (text == "numeric") return AccelerationSource::numeric;
-  throw Error("acceleration source '" + text + "' is not one of analytic, numeric");
-}
-
 TaskSample to_task_sample(const motion::TrajectorySample& s) noexcept {
   TaskSample t;
   t.t_s = s.t_s;
@@ -41,38 +35,38 @@ void throw_refusal(const JointCommand& c, const compensation::Compensator& comp,
   const int j = std::max(c.joint, 0);
   switch (c.status) {
     case Status::unreachable:
-      throw Error(where, fmt::format("{}: corrected target (x = {:.4f} mm, y = {:.4f} mm) is not reachable: {}", when,
+      throw Refusal(where, fmt::format("{}: corrected target (x = {:.4f} mm, y = {:.4f} mm) is not reachable: {}", when,
                                      units::m_to_mm(c.command_m.x()), units::m_to_mm(c.command_m.y()),
-                                     comp.five_bar().explain(c.command_m)));
+                                     comp.five_bar().explain(c.command_m)), c.status);
     case Status::joint_position:
-      throw Error(where, fmt::format("{}: joint {} position {:.3f} deg outside [{:.1f}, {:.1f}] deg", when, joint().name,
+      throw Refusal(where, fmt::format("{}: joint {} position {:.3f} deg outside [{:.1f}, {:.1f}] deg", when, joint().name,
                                      units::rad_to_deg(c.q_rad[j]), units::rad_to_deg(joint().min_rad),
-                                     units::rad_to_deg(joint().max_rad)));
+                                     units::rad_to_deg(joint().max_rad)), c.status);
     case Status::joint_velocity:
-      throw Error(where, fmt::format("{}: joint {} velocity {:.2f} rad/s exceeds the limit {:.2f} rad/s", when,
-                                     joint().name, c.qd_rad_s[j], joint().max_velocity_rad_s));
+      throw Refusal(where, fmt::format("{}: joint {} velocity {:.2f} rad/s exceeds the limit {:.2f} rad/s", when,
+                                     joint().name, c.qd_rad_s[j], joint().max_velocity_rad_s), c.status);
     case Status::joint_acceleration:
-      throw Error(where, fmt::format("{}: joint {} acceleration {:.1f} rad/s^2 exceeds the limit {:.1f} rad/s^2", when,
-                                     joint().name, c.qdd_rad_s2[j], joint().max_acceleration_rad_s2));
+      throw Refusal(where, fmt::format("{}: joint {} acceleration {:.1f} rad/s^2 exceeds the limit {:.1f} rad/s^2", when,
+                                     joint().name, c.qdd_rad_s2[j], joint().max_acceleration_rad_s2), c.status);
     case Status::outside_grid: {
       const compliance::GridBounds b = comp.model().bounds();
-      throw Error(where, fmt::format("{}: (x = {:.4f} mm, y = {:.4f} mm) is more than {:g} mm outside the compliance "
+      throw Refusal(where, fmt::format("{}: (x = {:.4f} mm, y = {:.4f} mm) is more than {:g} mm outside the compliance "
                                      "model's measured region x [{:.3f}, {:.3f}] mm, y [{:.3f}, {:.3f}] mm (use "
                                      "--outside clamp or extrapolate to go on anyway)",
                                      when, units::m_to_mm(c.target_m.x()), units::m_to_mm(c.target_m.y()),
                                      units::m_to_mm(compliance::kOutsideMargin_m), units::m_to_mm(b.x_min),
-                                     units::m_to_mm(b.x_max), units::m_to_mm(b.y_min), units::m_to_mm(b.y_max)));
+                                     units::m_to_mm(b.x_max), units::m_to_mm(b.y_min), units::m_to_mm(b.y_max)), c.status);
     }
-    case Status::not_finite: throw Error(where, when + ": the planned sample is not finite");
+    case Status::not_finite: throw Refusal(where, when + ": the planned sample is not finite", c.status);
     case Status::ok: break;
   }
-  throw Error(where, when + ": " + compensation::describe(c.status));
+  throw Refusal(where, when + ": " + compensation::describe(c.status), c.status);
 }
 
 JobSummary run_job(motion::SampleSource& source, const compensation::Compensator& compensator, JointWriter* writer,
                    const std::string& job_label, double rate_hz, AccelerationSource acceleration,
-                   const Progress& progress, compensation::FilterChain* filters) {
-  TaskSource tasks(source, rate_hz, acceleration, filters);
+                   const Progress& progress, compensation::FilterChain* filters, LaserDelays laser) {
+  TaskSource tasks(source, rate_hz, acceleration, filters, laser);
 
   // This thread plans; compensation, checks and writing go through the two-thread pipeline. An
   // error of the planner (a bad G-code line further on) is reported only after the samples planned

@@ -17,10 +17,10 @@
 
 namespace stiffpath::job {
 
-OutputFormat parse_output_format(const std::string& text) {
-  if (text == "csv") return OutputFormat::csv;
-  if (text == "bin" || text == "binary") return OutputFormat::binary;
-  throw Error("output format '" + text + "' is not one of csv, bin");
+double estimated_joint_file_bytes(OutputFormat format, std::uint64_t samples) noexcept {
+  const auto n = static_cast<double>(samples);
+  if (format == OutputFormat::binary) return kBinaryHeaderBytes + n * kBinaryRecordBytes;
+  return 200.0 + 140.0 * n;
 }
 
 namespace {

@@ -7,8 +7,8 @@
 namespace stiffpath::job {
 
 TaskSource::TaskSource(motion::SampleSource& source, double rate_hz, AccelerationSource acceleration,
-                       compensation::FilterChain* filters)
-    : source_(source), acceleration_(acceleration), filters_(filters), numeric_(rate_hz) {
+                       compensation::FilterChain* filters, LaserDelays laser)
+    : source_(source), acceleration_(acceleration), filters_(filters), numeric_(rate_hz), laser_(rate_hz, laser) {
   if (filters_ && !filters_->empty()) {
     // The filtered arc length lags the planned one by at most the filters' delay: segments that old are kept.
     const double keep_s = static_cast<double>(filters_->delay_samples() + 3) / rate_hz;
@@ -55,6 +55,11 @@ bool TaskSource::next_reference(compensation::TaskSample& out) {
 }
 
 bool TaskSource::next(compensation::TaskSample& out) {
+  if (!laser_.active()) return next_timed(out);
+  return laser_.next(out, [this](compensation::TaskSample& s) { return next_timed(s); });
+}
+
+bool TaskSource::next_timed(compensation::TaskSample& out) {
   if (!filters_ || filters_->empty()) return next_planned(out);
   if (!path_) return next_reference(out);
   if (acceleration_ == AccelerationSource::analytic) return path_->next(out);

@@ -80,6 +80,21 @@ Vec2 Robot::inverse(const Vec2& p) const {
   return five_bar().solve_inverse(p).q;
 }
 
+Vec2 Robot::forward(const Vec2& q) const {
+  for (std::size_t i = 0; i < 2; ++i) {
+    const double angle = q[static_cast<Eigen::Index>(i)];
+    const JointLimit& lim = joints[i];
+    if (!std::isfinite(angle)) throw Error(fmt::format("joint {} angle is not a finite number: {}", lim.name, angle));
+    if (!(angle >= lim.min_rad && angle <= lim.max_rad)) {
+      throw Error(fmt::format("joint {} = {:g} rad ({:g} deg) is outside its range [{:.1f}, {:.1f}] deg on robot '{}'{}",
+                              lim.name, angle, units::rad_to_deg(angle), units::rad_to_deg(lim.min_rad),
+                              units::rad_to_deg(lim.max_rad), name,
+                              std::abs(angle) > 2.0 * std::numbers::pi ? " (degrees given where radians are asked?)" : ""));
+    }
+  }
+  return five_bar().forward_checked(q);
+}
+
 std::vector<std::string> preset_names() {
   std::vector<std::string> names;
   for (const auto& file : core::embedded_files()) {

@@ -9,6 +9,7 @@
 #include "stiffpath/core/json_fields.hpp"
 #include "stiffpath/core/units.hpp"
 #include "stiffpath/kinematics/robot.hpp"
+#include "stiffpath/kinematics/robot_json.hpp"
 
 namespace stiffpath::kinematics {
 
@@ -89,8 +90,8 @@ Robot parse_robot(std::string_view text, const core::DataRef& file) {
   const core::JsonObject root(doc);
   root.allow_only({"name", "description", "left_actuator_mm", "right_actuator_mm", "left_proximal_mm",
                    "right_proximal_mm", "left_distal_mm", "right_distal_mm", "elbows", "assembly",
-                   "joint_zero_offsets_deg", "moving_mass_kg",
-                   "tip_damping_ratio", "cg", "measurement", "joints", "singularity_margin", "home_mm", "compliance"},
+                   "joint_zero_offsets_deg", "moving_mass_kg", "tip_damping_ratio", "tip_frequency_scale", "laser", "cg",
+                   "measurement", "joints", "singularity_margin", "home_mm", "compliance"},
                   kHints);
   Robot robot;
   robot.file = file;
@@ -103,6 +104,22 @@ Robot parse_robot(std::string_view text, const core::DataRef& file) {
   if (root.has("tip_damping_ratio")) {
     robot.tip_damping_ratio = root.non_negative("tip_damping_ratio");
     if (!(robot.tip_damping_ratio < 1.0)) root.fail("tip_damping_ratio", fmt::format("must be below 1 (an underdamped mode), got {}", robot.tip_damping_ratio));
+  }
+  if (root.has("tip_frequency_scale")) {
+    robot.tip_frequency_scale = root.positive("tip_frequency_scale");
+    if (!(robot.tip_frequency_scale >= 0.2 && robot.tip_frequency_scale <= 5.0)) {
+      root.fail("tip_frequency_scale", fmt::format("RANGE: must lie in 0.2 … 5, got {}", robot.tip_frequency_scale));
+    }
+  }
+  if (root.has("laser")) {
+    const core::JsonObject laser = root.object("laser");
+    laser.allow_only({"on_delay_ms", "off_delay_ms"});
+    for (const auto& [key, field] : {std::pair{"on_delay_ms", &robot.laser_on_delay_s}, std::pair{"off_delay_ms", &robot.laser_off_delay_s}}) {
+      if (!laser.has(key)) continue;
+      const double ms = laser.number(key);
+      if (!(ms >= -50.0 && ms <= 50.0)) laser.fail(key, fmt::format("RANGE: must lie within ±50 ms, got {}", ms));
+      *field = ms * 1e-3;
+    }
   }
 
   if (root.has("cg")) {
@@ -150,14 +167,22 @@ Robot parse_robot(std::string_view text, const core::DataRef& file) {
     if (c.has("table")) robot.compliance.table = core::resolve_beside(file, c.string("table"));
     if (c.has("rows")) robot.compliance.rows = c.string("rows");
     if (c.has("model")) robot.compliance.model = core::resolve_beside(file, c.string("model"));
-    if (c.has("method")) robot.compliance.method = c.string("method");
+    for (const char* key : {"rows", "method"}) {
+      if (c.has(key) && !c.has("table")) c.fail(key, "applies to a table, and this robot names none (compliance.table)");
+    }
+    if (c.has("method")) {
+      const std::string method = c.string("method");
+      if (method != "auto") {  // "auto": the method the table's cross-validation favours, as when none is named
+        robot.compliance.method = core::find_enum<FitMethod>(method);
+        if (!robot.compliance.method) {
+          c.fail("method", fmt::format("must be auto, {}, got '{}'", core::enum_choices<FitMethod>(), method));
+        }
+      }
+    }
     // One key per meaning: a table (fitted on load, by `method`, of its `rows`) or a fitted model.
     if (c.has("model") && c.has("table")) {
       c.fail("model", "give either a table (fitted when loaded) or a fitted model, not both: which one compensates "
                       "would be ambiguous");
-    }
-    for (const char* key : {"rows", "method"}) {
-      if (c.has(key) && !c.has("table")) c.fail(key, "applies to a table, and this robot names none (compliance.table)");
     }
     for (const auto* ref : {&robot.compliance.table, &robot.compliance.model}) {
       if (!ref->empty() && !core::data_exists(*ref)) {
@@ -206,6 +231,10 @@ nlohmann::json to_json(const Robot& r) {
   doc.update(geometry_to_json(r.geometry));
   doc["moving_mass_kg"] = r.moving_mass_kg;
   doc["tip_damping_ratio"] = r.tip_damping_ratio;
+  if (r.tip_frequency_scale != 1.0) doc["tip_frequency_scale"] = r.tip_frequency_scale;
+  if (r.laser_on_delay_s != 0.0 || r.laser_off_delay_s != 0.0) {
+    doc["laser"] = {{"on_delay_ms", r.laser_on_delay_s * 1e3}, {"off_delay_ms", r.laser_off_delay_s * 1e3}};
+  }
   doc["cg"] = {{"label", r.cg_label}, {"height_above_G_mm", units::m_to_mm(r.cg_height_m)}};
   if (r.replica) doc["measurement"] = {{"UG_mm", units::m_to_mm(r.replica->ug_m)}, {"UL_mm", units::m_to_mm(r.replica->ul_m)}};
   doc["joints"] = joints;
@@ -217,7 +246,7 @@ nlohmann::json to_json(const Robot& r) {
   if (!r.compliance.table.empty()) compliance["table"] = r.compliance.table.label();
   if (!r.compliance.rows.empty()) compliance["rows"] = r.compliance.rows;
   if (!r.compliance.model.empty()) compliance["model"] = r.compliance.model.label();
-  if (!r.compliance.method.empty()) compliance["method"] = r.compliance.method;
+  if (r.compliance.method) compliance["method"] = core::enum_name(*r.compliance.method);
   doc["compliance"] = compliance;
   return doc;
 }

@@ -24,7 +24,7 @@ void check_units(const core::CsvReader& csv, int header_line) {
   for (const char* q : {"Ux", "Uy", "Uz", "Lx", "Ly", "Lz", "x", "y"}) require_unit(csv, header_line, q, "mm");
   for (std::size_t i = 0; i < csv.header().size(); ++i) {
     const std::string& name = csv.header()[i];
-    if (name.starts_with("force_") && name != "force_kgf" && name != "force_N") {
+    if (name.starts_with("force_") && name != "force_kgf" && name != "force_N" && name != "force_nominal_N") {
       throw Error(SourceLocation{csv.label(), header_line, header_column(csv, i)},
                   fmt::format("column '{}': unit '{}' is not supported, use force_kgf or force_N", name,
                               name.substr(6)));
@@ -68,12 +68,13 @@ Campaign load_campaign(const std::string& path) {
                       : "missing force column: give force_kgf (table 2.1's unit) or force_N");
   }
   const std::size_t c_force = c_kgf ? *c_kgf : *c_n;
+  const auto c_nominal = csv.find_column("force_nominal_N");
   const double to_N = c_kgf ? units::standard_gravity_m_s2 : 1.0;
   std::size_t c_coord[6];
   const char* coord_names[6] = {"Ux_mm", "Uy_mm", "Uz_mm", "Lx_mm", "Ly_mm", "Lz_mm"};
   for (int k = 0; k < 6; ++k) c_coord[k] = require(csv, coord_names[k], header_line);
 
-  Campaign campaign{path, c_kgf ? ForceUnit::kgf : ForceUnit::N, {}};
+  Campaign campaign{path, c_kgf ? ForceUnit::kgf : ForceUnit::N, c_nominal.has_value(), {}};
   std::map<std::tuple<std::string, int, int, int>, int> seen;  // key → line
   while (csv.next()) {
     if (campaign.readings.size() >= core::max_table_rows) {
@@ -92,6 +93,12 @@ Campaign load_campaign(const std::string& path) {
     const double force = csv.number(c_force);
     if (force < 0.0) csv.fail(c_force, fmt::format("force must not be negative, got {}", force));
     r.force_N = force * to_N;
+    if (c_nominal) {
+      const double nominal = csv.number(*c_nominal);
+      if (!(nominal >= 0.0 && nominal <= 1e5)) csv.fail(*c_nominal, fmt::format("must lie in 0 … 100000 N, got {}", nominal));
+      if (r.step == 0 && nominal != 0.0) csv.fail(*c_nominal, fmt::format("step 0 is the reference: its nominal load is 0, got {}", nominal));
+      r.nominal_force_N = nominal;
+    }
     for (int k = 0; k < 3; ++k) r.U[k] = units::mm_to_m(csv.number(c_coord[k]));
     for (int k = 0; k < 3; ++k) r.L[k] = units::mm_to_m(csv.number(c_coord[k + 3]));
     if ((r.U - r.L).norm() < 1e-6) csv.fail(c_coord[3], "U and L coincide: the replica axis is undefined");
@@ -111,13 +118,18 @@ Campaign load_campaign(const std::string& path) {
 void save_campaign(const Campaign& campaign, const std::string& path) {
   core::AtomicFile file(path);
   auto& out = file.stream();
-  out << kCampaignColumns << '\n';
+  out << (campaign.has_nominal_forces
+              ? "point,x_mm,y_mm,direction,step,reading,force_kgf,force_nominal_N,Ux_mm,Uy_mm,Uz_mm,Lx_mm,Ly_mm,Lz_mm"
+              : kCampaignColumns)
+      << '\n';
   for (const auto& r : campaign.readings) {
-    out << fmt::format("{},{:.3f},{:.3f},{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f}\n", r.point,
+    const std::string nominal =
+        campaign.has_nominal_forces ? fmt::format("{:.6f},", r.nominal_force_N.value_or(0.0)) : std::string();
+    out << fmt::format("{},{:.3f},{:.3f},{},{},{},{:.6f},{}{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f}\n", r.point,
                        units::m_to_mm(r.x_m), units::m_to_mm(r.y_m), to_string(r.direction), r.step, r.reading,
-                       r.force_N / units::standard_gravity_m_s2, units::m_to_mm(r.U.x()), units::m_to_mm(r.U.y()),
-                       units::m_to_mm(r.U.z()), units::m_to_mm(r.L.x()), units::m_to_mm(r.L.y()),
-                       units::m_to_mm(r.L.z()));
+                       r.force_N / units::standard_gravity_m_s2, nominal, units::m_to_mm(r.U.x()),
+                       units::m_to_mm(r.U.y()), units::m_to_mm(r.U.z()), units::m_to_mm(r.L.x()),
+                       units::m_to_mm(r.L.y()), units::m_to_mm(r.L.z()));
   }
   file.commit();
 }

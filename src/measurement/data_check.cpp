@@ -124,7 +124,7 @@ void compare_mechanisms(const DisplacementTable& table, const DataCheckOptions& 
 }  // namespace
 
 DataCheckReport check_displacements(const DisplacementTable& table, const DataCheckOptions& options) {
-  if (!(options.accuracy_m > 0.0) || !(options.ul_m > 0.0) || !std::isfinite(options.accuracy_m)) {
+  if (!(options.accuracy_m > 0.0) || !std::isfinite(options.accuracy_m) || (options.ul_m && !(*options.ul_m > 0.0))) {
     throw Error("data check: the accuracy and |UL| must be positive");
   }
   DataCheckReport rep;
@@ -142,6 +142,11 @@ DataCheckReport check_displacements(const DisplacementTable& table, const DataCh
   std::vector<Quantity> measured;
   for (Quantity q : kQuantities) {
     if (std::any_of(table.rows.begin(), table.rows.end(), [&](const DisplacementRow& r) { return value_of(r, q); })) {
+      if (is_angle(q) && !options.ul_m) {
+        rep.not_applicable.push_back(fmt::format("{}: the robot has no replica, whose |UL| sets an angle's accuracy",
+                                                 to_string(q)));
+        continue;
+      }
       measured.push_back(q);
     }
   }
@@ -169,10 +174,14 @@ DataCheckReport check_displacements(const DisplacementTable& table, const DataCh
   if (options.mirror_symmetric) {
     rep.symmetry = check_symmetry(table, options, rep.skipped);
   } else {
-    rep.skipped.push_back("symmetry: the robot is not its own mirror image about y = 0");
+    rep.not_applicable.push_back("symmetry: the robot is not its own mirror image about y = 0");
   }
   check_reciprocity(series, options, rep);
-  compare_mechanisms(table, options, rep);
+  if (table.mechanisms().size() < 2) {
+    rep.not_applicable.push_back("OC vs SC: the table holds the rows of one mechanism");
+  } else {
+    compare_mechanisms(table, options, rep);
+  }
   return rep;
 }
 

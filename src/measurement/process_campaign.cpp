@@ -60,8 +60,13 @@ DisplacementTable process_campaign(const Campaign& campaign, const ProcessOption
   if (!(options.geometry.ul_m > 0.0) || !(options.geometry.ug_m >= 0.0) || !std::isfinite(options.geometry.ug_m)) {
     throw Error(SourceLocation{campaign.source}, "replica geometry needs |UL| > 0 and |UG| >= 0");
   }
-  if (!(options.nominal_step_N > 0.0) || !std::isfinite(options.nominal_step_N)) {
+  if (options.nominal_step_N && !(*options.nominal_step_N > 0.0 && std::isfinite(*options.nominal_step_N))) {
     throw Error(SourceLocation{campaign.source}, "the nominal force step must be a positive number of N");
+  }
+  if (options.force_basis == ForceBasis::nominal && !campaign.has_nominal_forces && !options.nominal_step_N) {
+    throw Error(SourceLocation{campaign.source},
+                "nominal forces asked for, but the campaign names none: add a force_nominal_N column (the round load "
+                "each step adds to step 0, N) or give the nominal step");
   }
   validate_campaign(campaign);
   DisplacementTable table;
@@ -81,8 +86,11 @@ DisplacementTable process_campaign(const Campaign& campaign, const ProcessOption
       row.step = step;
       row.line = readings.front()->line;
       row.force_kgf = cur.force_N / units::standard_gravity_m_s2;
-      row.nominal_force_N = step * options.nominal_step_N;
-      row.force_N = options.force_basis == ForceBasis::measured ? cur.force_N - ref.force_N : row.nominal_force_N;
+      const double measured = cur.force_N - ref.force_N;
+      row.nominal_force_N = readings.front()->nominal_force_N ? *readings.front()->nominal_force_N
+                            : options.nominal_step_N          ? step * *options.nominal_step_N
+                                                              : measured;
+      row.force_N = options.force_basis == ForceBasis::measured ? measured : row.nominal_force_N;
       const Vec3 d = cur.g - ref.g;
       row.dx_m = d.x();
       row.dy_m = d.y();

@@ -95,6 +95,7 @@ std::vector<SymmetryResult> check_symmetry(const DisplacementTable& table, const
     const DisplacementRow& p = *it->second;
     const bool self = p.point == r.point;
     for (Quantity q : kQuantities) {
+      if (is_angle(q) && !options.ul_m) continue;  // no replica: angles are not checked (data_check.hpp)
       const double m = sign * mirror_sign(q);
       if (self && m > 0.0) continue;  // compares a cell with itself
       const auto a = value_of(r, q), b = value_of(p, q);

@@ -50,14 +50,16 @@ Campaign simulate_campaign(const DisplacementTable& truth, const VirtualCampaign
                ? Vec3(p + options.noise_sigma_m * Vec3(noise(rng), noise(rng), noise(rng)))
                : p;
   };
-  Campaign campaign{"virtual campaign of " + truth.source, ForceUnit::kgf, {}};
+  // The truth's round loads travel with the readings, so that the campaign names them as a real one would.
+  Campaign campaign{"virtual campaign of " + truth.source, ForceUnit::kgf, true, {}};
   auto add_step = [&](const DisplacementRow& row, int step, double kgf, const Vec3& g, const Tilt& t) {
     const Vec3 a = axis_from_tilt(t);
     const Vec3 U = g + options.geometry.ug_m * a;
     const Vec3 L = U - options.geometry.ul_m * a;
     for (int k = 1; k <= options.readings_per_step; ++k) {
-      CampaignReading r{row.point, row.x_m, row.y_m, row.direction, step, k, units::kgf_to_N(kgf), noisy(U),
-                        noisy(L), 0};
+      CampaignReading r{.point = row.point, .x_m = row.x_m, .y_m = row.y_m, .direction = row.direction,
+                        .step = step, .reading = k, .force_N = units::kgf_to_N(kgf),
+                        .nominal_force_N = step == 0 ? 0.0 : row.nominal_force_N, .U = noisy(U), .L = noisy(L)};
       campaign.readings.push_back(std::move(r));
     }
   };
@@ -80,6 +82,12 @@ Campaign simulate_campaign(const DisplacementTable& truth, const VirtualCampaign
     add_step(row, row.step, row.force_kgf, g, t);
   }
   return campaign;
+}
+
+double step0_load_kgf(const DisplacementTable& table) {
+  if (table.rows.empty()) return 0.0;
+  const auto& first = table.rows.front();
+  return std::max(0.0, std::round((first.force_kgf - first.force_N / units::standard_gravity_m_s2) * 1e6) / 1e6);
 }
 
 DisplacementTable linear_truth(const DisplacementTable& table) {

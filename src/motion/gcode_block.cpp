@@ -124,6 +124,7 @@ void Sorter::m(const GcodeWord& w) {
       return;
     case 20: case 300: assign(block.stop, w, "program end (M2/M30)"); return;
     case 70: case 80: case 90: return;  // coolant / air assist: no effect on the motion
+    case 2040: assign(block.acceleration, w, "acceleration (M204)"); return;
     case 0: case 10:
       if (strict) return refuse(w, "program pauses are not supported");
       assign(block.pause, w, "program stop (M0/M1)");

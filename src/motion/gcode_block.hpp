@@ -24,6 +24,7 @@ struct GcodeBlock {
   const GcodeWord* laser = nullptr;       //!< M3, M4, M5, M106, M107, M62, M63
   const GcodeWord* stop = nullptr;        //!< M2, M30
   const GcodeWord* pause = nullptr;       //!< M0, M1
+  const GcodeWord* acceleration = nullptr;  //!< M204 (its S is the acceleration, not the laser's power)
   const GcodeWord* x = nullptr;
   const GcodeWord* y = nullptr;
   const GcodeWord* z = nullptr;           //!< read only to tell a move with Z from a line without one

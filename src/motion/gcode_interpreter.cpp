@@ -33,6 +33,7 @@ void GcodeInterpreter::warn(GcodeWarningKind kind, const GcodeBlock& b, const st
 void GcodeInterpreter::execute(const GcodeBlock& b, std::deque<PathSegment>& out) {
   if (b.units != nullptr) scale_m_ = code_tenths(b.units->value) == 200 ? inch_m : 1e-3;
   set_feed(b);
+  set_acceleration(b);
   set_laser(b);
   if (b.tool) warn(GcodeWarningKind::tool_ignored, b, "tool selection (T) and tool changes (M6) are ignored");
   if (b.z != nullptr) {
@@ -307,6 +308,19 @@ void GcodeInterpreter::program_stop(const GcodeBlock& b, std::deque<PathSegment>
   }
 }
 
+// M204 S<acceleration>: program units per s² (Marlin's, RepRapFirmware's), the limit of the moves that follow
+// until the next M204; it only lowers the machine's limit.
+void GcodeInterpreter::set_acceleration(const GcodeBlock& b) {
+  if (b.acceleration == nullptr) return;
+  if (b.s == nullptr) b.fail(*b.acceleration, "M204 needs S, the acceleration in program units per s^2");
+  const double a = b.s->value * scale_m_;
+  if (!(a >= min_acceleration_limit_m_s2 && a <= max_acceleration_limit_m_s2)) {
+    b.fail(*b.s, fmt::format("acceleration {:g} m/s^2 is outside {:g} … {:g} m/s^2", a, min_acceleration_limit_m_s2,
+                             max_acceleration_limit_m_s2));
+  }
+  acceleration_m_s2_ = a;
+}
+
 void GcodeInterpreter::emit(PathSegment segment, const GcodeBlock& b, std::deque<PathSegment>& out) {
   const double power = power_fraction();
   segment.line = b.where->line;
@@ -321,6 +335,7 @@ void GcodeInterpreter::emit(PathSegment segment, const GcodeBlock& b, std::deque
   }
   segment.blend_tolerance_m = blend_tolerance_m_;
   segment.merge_tolerance_m = segment.mode == JunctionMode::blend ? merge_tolerance_m_ : 0.0;
+  segment.max_acceleration_m_s2 = acceleration_m_s2_;
   out.push_back(segment);
 }
 

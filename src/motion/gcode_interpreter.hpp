@@ -46,6 +46,7 @@ class GcodeInterpreter {
   //! An X or Y word in m (units applied), refused beyond ±max_coordinate_mm at the word.
   double coordinate_m(const detail::GcodeBlock& block, const GcodeWord& word) const;
   [[nodiscard]] double power_fraction() const noexcept;
+  void set_acceleration(const detail::GcodeBlock& block);
   void emit(PathSegment segment, const detail::GcodeBlock& block, std::deque<PathSegment>& out);
   void warn(GcodeWarningKind kind, const detail::GcodeBlock& block, const std::string& message);
 
@@ -55,6 +56,7 @@ class GcodeInterpreter {
   bool incremental_ = false;       // G91
   int motion_ = -1;                // active motion code in tenths (0, 10, 20, 30); −1 none yet
   std::optional<double> feed_m_s_;
+  double acceleration_m_s2_ = 0.0;  // M204 S (0: the machine's limit)
   double s_ = 0.0;                 // S as programmed
   Laser laser_ = Laser::off;
   bool dynamic_ = false;           // M4

@@ -39,7 +39,7 @@ void GcodeInterpreter::set_laser(const GcodeBlock& b) {
     }
     code = -1;  // an ignored digital output: an S on its line is still the laser's
   }
-  if (b.s != nullptr) {
+  if (b.s != nullptr && b.acceleration == nullptr) {  // with M204 the S word is its acceleration
     if (b.s->value < 0.0) b.fail(*b.s, "laser power must not be negative");
     const double full = code == 1060 ? fan_s_max : options_.s_max;
     if (b.s->value > full) {

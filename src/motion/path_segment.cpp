@@ -27,6 +27,7 @@ PathSegment carrying_attributes(PathSegment piece, const PathSegment& source) no
   piece.dynamic_power = source.dynamic_power;
   piece.blend_tolerance_m = source.blend_tolerance_m;
   piece.merge_tolerance_m = source.merge_tolerance_m;
+  piece.max_acceleration_m_s2 = source.max_acceleration_m_s2;
   piece.line = source.line;
   piece.rapid = source.rapid;
   piece.laser_on = source.laser_on;

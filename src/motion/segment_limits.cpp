@@ -8,7 +8,9 @@ namespace stiffpath::motion {
 
 SegmentLimits segment_limits(const PathSegment& segment, const MotionLimits& limits) noexcept {
   if (segment.kind == SegmentKind::dwell) return {};
-  const double a = limits.max_acceleration_m_s2, j = limits.max_jerk_m_s3;
+  const double a = segment.max_acceleration_m_s2 > 0.0 ? std::min(limits.max_acceleration_m_s2, segment.max_acceleration_m_s2)
+                                                      : limits.max_acceleration_m_s2;
+  const double j = limits.max_jerk_m_s3;
   SegmentLimits out{std::min(segment.feed_m_s, limits.max_velocity_m_s), a, j};
   const double kappa = std::abs(curvature_1_m(segment));
   if (segment.kind != SegmentKind::arc || kappa <= 0.0) return out;

@@ -58,7 +58,7 @@ void plot_cross_validation(const std::filesystem::path& dir, const std::string& 
                            const compliance::CvReport& report, Style style) {
   std::string data;
   for (std::size_t m = 0; m < report.methods.size(); ++m) {
-    data += "# " + report.methods[m].method + "\n";
+    data += "# " + std::string(core::enum_name(report.methods[m].method)) + "\n";
     for (const auto& p : report.methods[m].points) {
       for (const auto& load : p.loads) {
         if (load.dx_m) data += fmt::format("{:.3f}\t{:.3f}\tx\t{}\n", *load.dx_m * 1e6, load.predicted_m.x() * 1e6, p.id);
@@ -78,7 +78,7 @@ void plot_cross_validation(const std::filesystem::path& dir, const std::string& 
         "set title {}\nset xlabel 'measured (µm)'\nset ylabel 'predicted (µm)'\nset key top left\n"
         "plot x with lines lc rgb 'gray' notitle, {} index {} using 1:(strcol(3) eq 'x' ? $2 : 1/0) with points pt 7 "
         "title 'dx', '' index {} using 1:(strcol(3) eq 'y' ? $2 : 1/0) with points pt 5 title 'dy'\n",
-        quote(fmt::format("{}: mean {:.1f} µm over {} points", method.method, method.mean_um, method.predicted)),
+        quote(fmt::format("{}: mean {:.1f} µm over {} points", core::enum_name(method.method), method.mean_um, method.predicted)),
         quote(name + ".tsv"), m, m);
   }
   commands += "unset multiplot";

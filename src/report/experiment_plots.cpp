@@ -2,6 +2,7 @@
 #include "stiffpath/report/experiment_plots.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <fmt/format.h>
 #include <map>
 
@@ -35,13 +36,21 @@ std::vector<std::string> write_results_figures(const std::filesystem::path& dir,
     std::string name, motion, ylabel, what, figure;
     int column;  // in the data file: 1 acceleration_g, 2 length_mm, 3 deviation_area_mm2
   };
-  const std::vector<Panel> panels{
+  std::vector<Panel> panels{
       {"fig_4_9a_y_length", "y", "length (mm)", "length", "4.9a", 2},
       {"fig_4_9b_y_deviation", "y", "deviation area (mm²)", "deviation from linearity", "4.9b", 3},
       {"fig_4_10a_x_length", "x", "length (mm)", "length", "4.10a", 2},
       {"fig_4_10b_x_deviation", "x", "deviation area (mm²)", "deviation from linearity", "4.10b", 3},
       {"fig_4_11_triangle_deviation", "triangle", "total deviation area (mm²)", "deviation from linearity", "4.11", 3},
   };
+  // Every other motion (off-grid motions, a user's paths) gets the same two panels, in the table's order.
+  for (const auto& r : table.rows) {
+    if (std::any_of(panels.begin(), panels.end(), [&](const Panel& p) { return p.motion == r.motion; })) continue;
+    std::string stem;
+    for (const char c : r.motion) stem += std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '-' ? c : '_';
+    panels.push_back({"results_" + stem + "_length", r.motion, "length (mm)", "length", "", 2});
+    panels.push_back({"results_" + stem + "_deviation", r.motion, "total deviation area (mm²)", "deviation from linearity", "", 3});
+  }
   std::vector<std::string> rendered;
   for (const auto& panel : panels) {
     std::string data, plots;
@@ -81,8 +90,8 @@ std::vector<std::string> write_results_figures(const std::filesystem::path& dir,
     figure.commands = fmt::format(
         "set title {}\nset xlabel 'path acceleration (g)'\nset ylabel {}\nset grid\nset key outside right\n"
         "set xtics 1\nset offsets 0.2, 0.2, 0, 0\nplot {}\n",
-        quote(fmt::format("{} motion: {} of the {} marks (cf. fig. {})", panel.motion, panel.what, table.source,
-                          panel.figure)),
+        quote(fmt::format("{} motion: {} of the {} marks{}", panel.motion, panel.what, table.source,
+                          panel.figure.empty() ? "" : " (cf. fig. " + panel.figure + ")")),
         quote(panel.ylabel), plots);
     if (style == Style::paper) figure.width_px = 1100;
     render(dir, figure);

@@ -1,6 +1,7 @@
 // HTML page assembly for `stiffpath report`: escaping, tables, inline SVG figures and the self-check script.
 #include "stiffpath/report/html_page.hpp"
 
+#include <algorithm>
 #include <fmt/format.h>
 #include <fstream>
 #include <sstream>
@@ -35,6 +36,44 @@ std::string html_table(const std::vector<std::string>& header, const std::vector
     out += "</tr>\n";
   }
   return out + "</table>\n";
+}
+
+namespace {
+// The cells of a Markdown table row "| a | b |", trimmed.
+std::vector<std::string> markdown_cells(const std::string& line) {
+  std::vector<std::string> cells;
+  std::size_t start = line.find('|') + 1;
+  for (std::size_t bar = line.find('|', start); bar != std::string::npos; bar = line.find('|', start)) {
+    std::string cell = line.substr(start, bar - start);
+    const auto first = cell.find_first_not_of(' '), last = cell.find_last_not_of(' ');
+    cells.push_back(first == std::string::npos ? std::string() : cell.substr(first, last - first + 1));
+    start = bar + 1;
+  }
+  return cells;
+}
+}  // namespace
+
+std::string markdown_html(const std::string& text) {
+  std::string out;
+  std::vector<std::string> lines;
+  for (std::size_t at = 0; at <= text.size();) {
+    const std::size_t end = std::min(text.find('\n', at), text.size());
+    lines.push_back(text.substr(at, end - at));
+    at = end + 1;
+  }
+  for (std::size_t i = 0; i < lines.size();) {
+    if (lines[i].starts_with('|')) {
+      const std::vector<std::string> header = markdown_cells(lines[i++]);
+      if (i < lines.size() && lines[i].starts_with("|-")) ++i;  // the |---| row
+      std::vector<std::vector<std::string>> rows;
+      while (i < lines.size() && lines[i].starts_with('|')) rows.push_back(markdown_cells(lines[i++]));
+      out += html_table(header, rows);
+    } else {
+      if (!lines[i].empty()) out += "<p>" + escape_html(lines[i]) + "</p>\n";
+      ++i;
+    }
+  }
+  return out;
 }
 
 namespace {

@@ -5,6 +5,7 @@
 
 #include "stiffpath/core/csv.hpp"
 #include "stiffpath/core/error.hpp"
+#include "stiffpath/core/units.hpp"
 
 namespace stiffpath::report {
 
@@ -16,8 +17,9 @@ std::string check_source(const std::string& text) {
 ResultsTable results_from_runs(const std::vector<simulation::RunResult>& results) {
   ResultsTable table{{}, "simulated", "experiment"};
   for (const auto& r : results) {
-    table.rows.push_back({r.spec.robot, r.spec.motion, r.spec.compensated,
-                          r.spec.compensated ? r.spec.variant : std::string(), r.spec.acceleration_g,
+    table.rows.push_back({r.spec.robot, r.spec.motion, r.spec.compensated(),
+                          r.spec.compensated() ? std::string(core::enum_name(r.spec.variant)) : std::string(),
+                          r.spec.acceleration_m_s2 / units::standard_gravity_m_s2,
                           r.metrics.length_m * 1e3, r.metrics.deviation_area_m2 * 1e6});
   }
   return table;

@@ -20,7 +20,7 @@ std::vector<std::string> write_robustness_figures(const std::filesystem::path& d
   };
   for (const auto& r : rows) {
     add(motions, r.motion);
-    add(variants, r.variant);
+    add(variants, std::string(core::enum_name(r.variant)));
     add(conditions, label(r));
   }
   std::vector<std::string> rendered;
@@ -33,7 +33,7 @@ std::vector<std::string> write_robustness_figures(const std::filesystem::path& d
       text += "\"" + c + "\"";
       for (const auto& v : variants) {
         const auto it = std::find_if(rows.begin(), rows.end(), [&](const auto& r) {
-          return r.motion == motion && r.variant == v && label(r) == c;
+          return r.motion == motion && core::enum_name(r.variant) == v && label(r) == c;
         });
         text += it == rows.end() ? "\tNaN" : fmt::format("\t{:.2f}", it->worst_path_accuracy_m * 1e6);
       }

@@ -16,7 +16,7 @@ class LeverModel final : public compliance::Model {
   LeverModel(std::shared_ptr<const compliance::GridModel> angular, double h) : angular_(std::move(angular)), h_(h) {
     set_outside_policy(compliance::OutsidePolicy::clamp);
   }
-  [[nodiscard]] std::string method() const override { return "cg-lever"; }
+  [[nodiscard]] std::string description() const override { return "CG lever"; }
   [[nodiscard]] compliance::Mat2 compliance(const compliance::Vec2& p) const noexcept override {
     const compliance::Mat2 a = angular_->compliance(bounds().clamp(p));
     compliance::Mat2 l;
@@ -24,7 +24,6 @@ class LeverModel final : public compliance::Model {
     return h_ * l;
   }
   [[nodiscard]] compliance::GridBounds bounds() const noexcept override { return angular_->bounds(); }
-  [[nodiscard]] nlohmann::json parameters() const override { return {{"cg_height_m", h_}}; }
 
  private:
   std::shared_ptr<const compliance::GridModel> angular_;
@@ -37,12 +36,11 @@ class SumModel final : public compliance::Model {
       : a_(std::move(a)), b_(std::move(b)) {
     set_outside_policy(compliance::OutsidePolicy::extrapolate);
   }
-  [[nodiscard]] std::string method() const override { return a_->method() + "+" + b_->method(); }
+  [[nodiscard]] std::string description() const override { return a_->description() + " + " + b_->description(); }
   [[nodiscard]] compliance::Mat2 compliance(const compliance::Vec2& p) const noexcept override {
     return a_->compliance(p) + b_->compliance(p);
   }
   [[nodiscard]] compliance::GridBounds bounds() const noexcept override { return a_->bounds(); }
-  [[nodiscard]] nlohmann::json parameters() const override { return {{"a", a_->parameters()}, {"b", b_->parameters()}}; }
 
  private:
   std::shared_ptr<const compliance::Model> a_, b_;

@@ -12,7 +12,8 @@
 #include "stiffpath/job/task_source.hpp"
 #include "stiffpath/motion/trajectory_stream.hpp"
 #include "stiffpath/simulation/cg_lever.hpp"
-#include "stiffpath/simulation/compensator_factory.hpp"
+#include "stiffpath/job/prepared_job.hpp"
+#include "stiffpath/simulation/compensation_variant.hpp"
 
 namespace stiffpath::simulation {
 
@@ -30,19 +31,20 @@ compliance::GridBounds measured_region(const kinematics::Robot& robot) {
 // The twin models are shared by robots with the same data, rows, model and geometry (oc-gu and oc-gl).
 std::string data_key(const kinematics::Robot& r) {
   return fmt::format("{}|{}|{}|{}|{}", r.compliance.table.label(), r.compliance.rows, r.compliance.model.label(),
-                     r.compliance.method, r.geometry_hash());
+                     r.compliance.method ? core::enum_name(*r.compliance.method) : "auto", r.geometry_hash());
 }
 }  // namespace
 
 TwinModels make_twin_models(const kinematics::Robot& robot, const ExperimentOptions& options) {
   TwinModels models;
   models.truth = make_true_compliance(robot, options.truth);
-  const auto wants = [&](const char* v) {
+  const auto wants = [&](CompensationVariant v) {
     return std::find(options.variants.begin(), options.variants.end(), v) != options.variants.end();
   };
-  for (const auto& v : options.variants) (void)parse_compensation_variant(v);
-  models.compensation = fit_compensation_model(*models.truth, robot, options.fit);
-  if (wants("default")) {
+  CampaignFitOptions thesis_fit = options.fit;  // also the model the runs without compensation check the region with
+  if (!thesis_fit.method) thesis_fit.method = compensation_fit_method(CompensationVariant::thesis);
+  models.compensation = fit_compensation_model(*models.truth, robot, thesis_fit);
+  if (wants(CompensationVariant::default_run)) {
     CampaignFitOptions fit = options.fit;
     fit.method = compensation_fit_method(CompensationVariant::default_run);
     models.compensation_default = fit_compensation_model(*models.truth, robot, fit);
@@ -65,32 +67,26 @@ TwinModels make_twin_models(const kinematics::Robot& robot, const ExperimentOpti
 RunResult run_once(const RunSpec& spec, const kinematics::Robot& robot, const TwinModels& models,
                    const ExperimentOptions& options) {
   const TestMotion& motion = test_motion(models.motions, spec.motion);
-  motion::PlanOptions plan;
-  plan.limits.max_acceleration_m_s2 = spec.acceleration_g * units::standard_gravity_m_s2;
-  plan.rate_hz = options.command_rate_hz;
-  plan.limits.max_jerk_m_s3 = motion::default_jerk_m_s3(plan.limits.max_acceleration_m_s2);
-  std::istringstream program(motion.gcode);
-  motion::TrajectoryStream stream(program, motion.label, plan);
-  compensation::CompensatorOptions copts = options.compensator;
-  copts.enabled = spec.compensated;
-  const CompensationVariant variant = parse_compensation_variant(spec.variant);
-  const bool default_variant = spec.compensated && variant == CompensationVariant::default_run;
+  const bool default_variant = spec.variant == CompensationVariant::default_run;
   if (default_variant && !models.compensation_default) throw Error("the default variant's model was not made");
   SimulationOptions sim_options = options.simulation;
   if (options.cg_lever && !sim_options.cg_lever) sim_options.cg_lever = make_cg_lever(robot);
-  const auto model = options.oracle_model ? make_loaded_compliance(models.truth, sim_options.cg_lever)
-                     : default_variant    ? models.compensation_default
-                                          : models.compensation;
-  TwinCompensation compensation = make_compensation(robot, model, variant, copts, plan.rate_hz);
-  const compensation::Compensator& compensator = *compensation.compensator;
-  job::TaskSource tasks(stream, plan.rate_hz, job::AccelerationSource::analytic, &compensation.filters);
-  JointSource source = [&]() -> std::optional<compensation::JointCommand> {
-    compensation::TaskSample sample;
-    if (!tasks.next(sample)) return std::nullopt;
-    const compensation::JointCommand c = compensator.step(sample);
-    if (c.status != compensation::Status::ok) job::throw_refusal(c, compensator, motion.label);
-    return c;
-  };
+
+  // The run is the variant's job, as `run` would make it, with the twin's fitted model in place of the robot's.
+  job::JobSpec job = variant_job(robot, spec.variant);
+  job.model.given = options.oracle_model ? make_loaded_compliance(models.truth, sim_options.cg_lever)
+                    : default_variant    ? models.compensation_default
+                                         : models.compensation;
+  job.model.given_label = options.oracle_model ? "the twin's C_true" : "the model fitted to the virtual campaign";
+  job.gain = options.compensator.gain;
+  job.check_limits = options.compensator.check_limits;
+  job.damping_ratio = options.compensator.damping_ratio;
+  job.plan.limits.max_acceleration_m_s2 = spec.acceleration_m_s2;
+  job.plan.limits.max_jerk_m_s3 = motion::default_jerk_m_s3(job.plan.limits.max_acceleration_m_s2);
+  job.plan.rate_hz = options.command_rate_hz;
+  const job::PreparedJob prepared = job::prepare(std::move(job), job::Program::text(motion.gcode, motion.label));
+  job::CommandStream commands(prepared);
+  JointSource source = [&] { return commands.next(); };
   const SimulationResult sim = simulate(source, robot, models.truth, sim_options);
   RunResult out;
   out.spec = spec;
@@ -111,14 +107,16 @@ std::vector<RunResult> run_experiment(const ExperimentOptions& options, const st
     const TwinModels& twin = models.at(key);
     std::vector<std::string> motions = options.motions;
     for (const auto& path : options.paths) motions.push_back(path.name);
-    std::vector<std::pair<bool, std::string>> configs{{false, "thesis"}};
-    for (const auto& v : options.variants) configs.emplace_back(true, v);
+    std::vector<CompensationVariant> configs{CompensationVariant::without};
+    for (const auto v : options.variants) {
+      if (v != CompensationVariant::without) configs.push_back(v);
+    }
     const double runs = static_cast<double>(options.robots.size() * configs.size() * motions.size() *
-                                            options.accelerations_g.size());
-    for (const auto& [compensated, variant] : configs) {
+                                            options.accelerations_m_s2.size());
+    for (const auto variant : configs) {
       for (const auto& motion : motions) {
-        for (double g : options.accelerations_g) {
-          results.push_back(run_once({robot.name, motion, g, compensated, variant}, robot, twin, options));
+        for (double a : options.accelerations_m_s2) {
+          results.push_back(run_once({robot.name, motion, a, variant}, robot, twin, options));
           if (progress) progress(static_cast<double>(results.size()) / runs);
         }
       }
@@ -142,12 +140,12 @@ std::string experiment_csv(const std::vector<RunResult>& results) {
   for (const auto& r : results) {
     const auto& m = r.metrics;
     out += fmt::format("{},{},{},{},{},{:g},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{},{},{:.6f},{:.6f},{},simulated\n",
-                       r.spec.robot, r.rows, r.cg_label, r.spec.compensated ? 1 : 0, r.spec.motion,
-                       r.spec.acceleration_g, r.duration_s, m.length_m * 1e3, m.commanded_length_m * 1e3,
+                       r.spec.robot, r.rows, r.cg_label, r.spec.compensated() ? 1 : 0, r.spec.motion,
+                       r.spec.acceleration_m_s2 / units::standard_gravity_m_s2, r.duration_s, m.length_m * 1e3, m.commanded_length_m * 1e3,
                        m.length_error_m * 1e3, m.deviation_area_m2 * 1e6, m.max_deviation_m * 1e3,
                        m.path_accuracy_m * 1e3, optional_mm(m, m.cornering_round_off_m),
                        optional_mm(m, m.cornering_overshoot_m), m.residual_vibration_m * 1e3, m.peak_deflection_m * 1e3,
-                       r.spec.compensated ? r.spec.variant : std::string());
+                       r.spec.compensated() ? std::string(core::enum_name(r.spec.variant)) : std::string());
   }
   return out;
 }

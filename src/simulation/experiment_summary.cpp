@@ -4,16 +4,16 @@
 #include <fmt/format.h>
 #include <tuple>
 
+#include "stiffpath/core/units.hpp"
 #include "stiffpath/simulation/experiment.hpp"
 
 namespace stiffpath::simulation {
 namespace {
 
 const RunResult* find(const std::vector<RunResult>& results, const std::string& robot, const std::string& motion,
-                      double g, bool compensated, const std::string& variant) {
+                      double a, CompensationVariant variant) {
   for (const auto& r : results) {
-    if (r.spec.robot == robot && r.spec.motion == motion && r.spec.acceleration_g == g &&
-        r.spec.compensated == compensated && (!compensated || r.spec.variant == variant)) {
+    if (r.spec.robot == robot && r.spec.motion == motion && r.spec.acceleration_m_s2 == a && r.spec.variant == variant) {
       return &r;
     }
   }
@@ -25,26 +25,26 @@ std::string removed(double without, double with) {
   return fmt::format("{:.0f} %", 100.0 * (1.0 - std::abs(with) / std::abs(without)));
 }
 
-std::string summary_at(const std::vector<RunResult>& results, double g) {
+std::string summary_at(const std::vector<RunResult>& results, double a) {
   std::string out = fmt::format(
       "At {:g} g, without → with compensation:\n\n"
       "| robot | motion | compensation | length error (mm) | removed | max deviation (mm) | removed | deviation area "
       "(mm²) | residual vibration (mm) |\n|---|---|---|---|---|---|---|---|---|\n",
-      g);
-  std::vector<std::tuple<std::string, std::string, std::string>> seen;
+      a / units::standard_gravity_m_s2);
+  std::vector<std::tuple<std::string, std::string, CompensationVariant>> seen;
   for (const auto& r : results) {
-    if (!r.spec.compensated) continue;
-    const std::tuple<std::string, std::string, std::string> key{r.spec.robot, r.spec.motion, r.spec.variant};
+    if (!r.spec.compensated()) continue;
+    const std::tuple<std::string, std::string, CompensationVariant> key{r.spec.robot, r.spec.motion, r.spec.variant};
     if (std::find(seen.begin(), seen.end(), key) != seen.end()) continue;
     seen.push_back(key);
     const auto& [robot, motion, variant] = key;
-    const RunResult* off = find(results, robot, motion, g, false, variant);
-    const RunResult* on = find(results, robot, motion, g, true, variant);
+    const RunResult* off = find(results, robot, motion, a, CompensationVariant::without);
+    const RunResult* on = find(results, robot, motion, a, variant);
     if (!off || !on) continue;
     const auto& a = off->metrics;
     const auto& b = on->metrics;
     out += fmt::format("| {} | {} | {} | {:.4f} → {:.4f} | {} | {:.4f} → {:.4f} | {} | {:.3f} → {:.3f} | {:.4f} → {:.4f} |\n",
-                       robot, motion, variant, a.length_error_m * 1e3, b.length_error_m * 1e3,
+                       robot, motion, core::enum_name(variant), a.length_error_m * 1e3, b.length_error_m * 1e3,
                        removed(a.length_error_m, b.length_error_m), a.max_deviation_m * 1e3, b.max_deviation_m * 1e3,
                        removed(a.max_deviation_m, b.max_deviation_m), a.deviation_area_m2 * 1e6,
                        b.deviation_area_m2 * 1e6, a.residual_vibration_m * 1e3, b.residual_vibration_m * 1e3);
@@ -56,11 +56,15 @@ std::string summary_at(const std::vector<RunResult>& results, double g) {
 
 std::string experiment_summary(const std::vector<RunResult>& results) {
   std::vector<double> levels;
-  for (const auto& r : results) levels.push_back(r.spec.acceleration_g);
+  for (const auto& r : results) levels.push_back(r.spec.acceleration_m_s2);
   std::sort(levels.begin(), levels.end());
   levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
-  std::string out;
-  for (const double g : levels) out += (out.empty() ? "" : "\n") + summary_at(results, g);
+  // What each compensation is, as every surface defines it (job::JobSpec), so that no filter goes unnamed.
+  std::string out =
+      "Compensations: without = the planned path converted to joints as it is (no reference filter); thesis = the "
+      "thesis's method (bilinear model, quasi-static, no filter; `run --thesis`); default = what `run` does by "
+      "default (the model cross-validation favours, dynamic compensation, 8 ms smoothing).\n";
+  for (const double a : levels) out += "\n" + summary_at(results, a);
   return out;
 }
 

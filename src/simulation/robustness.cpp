@@ -32,8 +32,8 @@ std::vector<Condition> conditions(const RobustnessOptions& o, double zeta0) {
   for (double f : o.servo_bandwidths_hz) {
     if (f != o.base.simulation.plant.servo_bandwidth_hz) c.push_back({"servo_bandwidth_hz", f});
   }
-  for (double s : o.noise_sigmas_um) {
-    if (s * 1e-6 != o.base.fit.noise_sigma_m) c.push_back({"noise_um", s});
+  for (double s : o.noise_sigmas_m) {
+    if (s != o.base.fit.noise_sigma_m) c.push_back({"noise_um", s * 1e6});  // the table's factor, in µm
   }
   return c;
 }
@@ -41,11 +41,6 @@ std::vector<Condition> conditions(const RobustnessOptions& o, double zeta0) {
 void check(const RobustnessOptions& o) {
   if (o.seeds < 1 || o.seeds > 100) throw Error(fmt::format("robustness: seeds {} outside 1 … 100", o.seeds));
   if (o.motions.empty() || o.variants.empty()) throw Error("robustness: no motions or no variants");
-  for (const auto& v : o.variants) {
-    if (v != "without" && v != "thesis" && v != "default") {
-      throw Error(fmt::format("robustness: unknown variant '{}' (known: without, thesis, default)", v));
-    }
-  }
   for (double z : o.damping_ratios) {
     if (!(z >= 0.0 && z <= 2.0)) throw Error(fmt::format("robustness: damping ratio {} outside [0, 2]", z));
   }
@@ -55,8 +50,8 @@ void check(const RobustnessOptions& o) {
   for (double f : o.servo_bandwidths_hz) {
     if (!(f > 0.0 && f <= 2000.0)) throw Error(fmt::format("robustness: servo bandwidth {} Hz outside (0, 2000]", f));
   }
-  for (double s : o.noise_sigmas_um) {
-    if (!(s >= 0.0 && s <= 1000.0)) throw Error(fmt::format("robustness: noise {} µm outside [0, 1000]", s));
+  for (double s : o.noise_sigmas_m) {
+    if (!(s >= 0.0 && s <= 1e-3)) throw Error(fmt::format("robustness: noise {} µm outside [0, 1000]", s * 1e6));
   }
   const int runs = robustness_run_count(o);
   if (runs > o.max_runs) {
@@ -83,8 +78,8 @@ std::vector<RobustnessRow> run_robustness(const RobustnessOptions& options) {
   base.motions = {"x", "y", "triangle"};
   base.paths.clear();
   base.variants.clear();
-  for (const auto& v : options.variants) {
-    if (v != "without") base.variants.push_back(v);
+  for (const auto v : options.variants) {
+    if (v != CompensationVariant::without) base.variants.push_back(v);
   }
   base.truth.base = make_true_base(robot, base.truth);  // one structural fit, perturbed per seed
   std::vector<RobustnessRow> rows;
@@ -94,7 +89,7 @@ std::vector<RobustnessRow> run_robustness(const RobustnessOptions& options) {
       for (const auto& motion : options.motions) rows.push_back({c.factor, c.value, variant, motion});
     }
   }
-  const auto row_of = [&](const Condition& c, const std::string& variant, const std::string& motion) -> RobustnessRow& {
+  const auto row_of = [&](const Condition& c, CompensationVariant variant, const std::string& motion) -> RobustnessRow& {
     for (auto& r : rows) {
       if (r.factor == c.factor && r.value == c.value && r.variant == variant && r.motion == motion) return r;
     }
@@ -115,9 +110,7 @@ std::vector<RobustnessRow> run_robustness(const RobustnessOptions& options) {
       const TwinModels& twin = models.at(o.fit.noise_sigma_m);
       for (const auto& variant : options.variants) {
         for (const auto& motion : options.motions) {
-          const bool on = variant != "without";
-          const RunResult r =
-              run_once({robot.name, motion, options.acceleration_g, on, on ? variant : "thesis"}, robot, twin, o);
+          const RunResult r = run_once({robot.name, motion, options.acceleration_m_s2, variant}, robot, twin, o);
           RobustnessRow& row = row_of(c, variant, motion);
           const auto& m = r.metrics;
           ++row.runs;
@@ -125,12 +118,12 @@ std::vector<RobustnessRow> run_robustness(const RobustnessOptions& options) {
           row.worst_path_accuracy_m = std::max(row.worst_path_accuracy_m, m.path_accuracy_m);
           row.worst_residual_m = std::max(row.worst_residual_m, m.residual_vibration_m);
           row.worst_max_deviation_m = std::max(row.worst_max_deviation_m, m.max_deviation_m);
-          atp[fmt::format("{}|{}|{}|{}", c.factor, c.value, variant, motion)].push_back(m.path_accuracy_m);
+          atp[fmt::format("{}|{}|{}|{}", c.factor, c.value, core::enum_name(variant), motion)].push_back(m.path_accuracy_m);
         }
       }
     }
   }
-  for (auto& r : rows) r.median_path_accuracy_m = median(atp[fmt::format("{}|{}|{}|{}", r.factor, r.value, r.variant, r.motion)]);
+  for (auto& r : rows) r.median_path_accuracy_m = median(atp[fmt::format("{}|{}|{}|{}", r.factor, r.value, core::enum_name(r.variant), r.motion)]);
   return rows;
 }
 
@@ -139,7 +132,7 @@ std::string robustness_tsv(const std::vector<RobustnessRow>& rows) {
       "factor\tvalue\tvariant\tmotion\truns\tworst_CO_um\tworst_ATp_um\tmedian_ATp_um\tworst_residual_um\t"
       "worst_max_deviation_um\n";
   for (const auto& r : rows) {
-    out += fmt::format("{}\t{:g}\t{}\t{}\t{}\t{:.1f}\t{:.1f}\t{:.1f}\t{:.1f}\t{:.1f}\n", r.factor, r.value, r.variant,
+    out += fmt::format("{}\t{:g}\t{}\t{}\t{}\t{:.1f}\t{:.1f}\t{:.1f}\t{:.1f}\t{:.1f}\n", r.factor, r.value, core::enum_name(r.variant),
                        r.motion, r.runs, r.worst_overshoot_m * 1e6, r.worst_path_accuracy_m * 1e6,
                        r.median_path_accuracy_m * 1e6, r.worst_residual_m * 1e6, r.worst_max_deviation_m * 1e6);
   }
@@ -152,7 +145,7 @@ std::string robustness_markdown(const std::vector<RobustnessRow>& rows) {
       "worst residual (µm) | worst max deviation (µm) |\n|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : rows) {
     out += fmt::format("| {} | {:g} | {} | {} | {} | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {:.1f} |\n", r.factor, r.value,
-                       r.variant, r.motion, r.runs, r.worst_overshoot_m * 1e6, r.worst_path_accuracy_m * 1e6,
+                       core::enum_name(r.variant), r.motion, r.runs, r.worst_overshoot_m * 1e6, r.worst_path_accuracy_m * 1e6,
                        r.median_path_accuracy_m * 1e6, r.worst_residual_m * 1e6, r.worst_max_deviation_m * 1e6);
   }
   return out;

@@ -1,6 +1,10 @@
 // The twin's C_true sampled on a lattice and read back by Catmull–Rom bicubic interpolation.
 #include "stiffpath/simulation/tabulated_field.hpp"
 
+#include <nlohmann/json.hpp>
+
+#include "stiffpath/compliance/model_file.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
@@ -35,7 +39,7 @@ Mat2 TabulatedModel::compliance(const Vec2& p) const noexcept {
 }
 
 nlohmann::json TabulatedModel::parameters() const {
-  nlohmann::json out = base_->parameters();
+  nlohmann::json out = compliance::model_parameters(*base_);
   const GridBounds& r = lattice_.region();
   out["tabulated"] = {{"spacing_mm", lattice_.spacing_m() * 1e3},
                       {"x_mm", {r.x_min * 1e3, r.x_max * 1e3}},

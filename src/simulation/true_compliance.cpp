@@ -40,7 +40,7 @@ class PerturbedModel final : public compliance::Model {
       : base_(std::move(base)), sx_(sx), sy_(sy), seed_(seed) {
     set_outside_policy(compliance::OutsidePolicy::extrapolate);
   }
-  [[nodiscard]] std::string method() const override { return "perturbed-" + base_->method(); }
+  [[nodiscard]] std::string description() const override { return "perturbed " + base_->description(); }
   [[nodiscard]] Mat2 compliance(const Vec2& p) const noexcept override {
     const GridBounds b = base_->bounds();
     const Vec2 q = b.clamp(p);  // the perturbation is held at its edge value outside the grid
@@ -50,13 +50,6 @@ class PerturbedModel final : public compliance::Model {
     return s.asDiagonal() * base_->compliance(p) * s.asDiagonal();
   }
   [[nodiscard]] GridBounds bounds() const noexcept override { return base_->bounds(); }
-  [[nodiscard]] nlohmann::json parameters() const override {
-    return {{"base", base_->parameters()},
-            {"perturbation", sx_.epsilon},
-            {"seed", seed_},
-            {"sx", sx_.a},
-            {"sy", sy_.a}};
-  }
 
  private:
   std::shared_ptr<const compliance::Model> base_;
@@ -75,17 +68,14 @@ std::shared_ptr<const compliance::Model> make_true_base(const kinematics::Robot&
     compliance::check_model_geometry(m, robot, false);
     base = std::move(m.model);
   } else if (!robot.compliance.table.empty()) {
-    if (options.family == "structural") {
+    if (options.family == TrueFamily::structural) {
       // The structure costs an inverse kinematics and a network of arms per point; the plant reads it
       // every 20 kHz step, from a 0.5 mm lattice (within 10⁻⁵ of the structure, tabulated_field.hpp).
       // The built-in robots' fits are stored with the library (the same numbers, without the fit's time).
       return tabulate_true_field(stored_or_fitted_structural_model(robot, compliance::robot_table(robot)));
     }
-    if (options.family != "physical") {
-      throw Error(fmt::format("unknown C_true family '{}' (known: structural, physical)", options.family));
-    }
     base = compliance::fit_model(measurement::load_displacement_table(robot.compliance.table), robot.compliance.rows,
-                                 "physical", compliance::ForceConvention::measured, robot)
+                                 compliance::FitMethod::physical, compliance::ForceConvention::measured, robot)
                .model;
   } else if (!robot.compliance.model.empty()) {
     compliance::LoadedModel m = compliance::load_model_file(robot.compliance.model);

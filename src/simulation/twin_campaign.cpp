@@ -26,11 +26,7 @@ measurement::DisplacementTable virtual_campaign_table(const compliance::Model& t
   measurement::VirtualCampaignOptions campaign;
   campaign.noise_sigma_m = options.noise_sigma_m;
   campaign.seed = options.seed;
-  // The load of the unloaded reference step implied by the table (table 2.1: 0.11 kgf; zero for a
-  // table that gives forces in N only), to the µkgf.
-  const auto& first = own.rows.front();
-  campaign.step0_kgf =
-      std::max(0.0, std::round((first.force_kgf - first.force_N / units::standard_gravity_m_s2) * 1e6) / 1e6);
+  campaign.step0_kgf = measurement::step0_load_kgf(own);  // the robot's own reference load, none without one
   measurement::ProcessOptions process;
   process.mechanism = robot.compliance.rows;
   if (robot.replica) {
@@ -48,7 +44,7 @@ std::shared_ptr<const compliance::Model> fit_compensation_model(const compliance
                                                                 const kinematics::Robot& robot,
                                                                 const CampaignFitOptions& options) {
   const auto table = virtual_campaign_table(truth, robot, options);
-  const std::string method = !options.method.empty() ? options.method : robot.compliance.method;
+  const std::optional<compliance::FitMethod> method = options.method ? options.method : robot.compliance.method;
   std::shared_ptr<compliance::Model> model =
       compliance::fit_model(table, robot.compliance.rows, method, compliance::ForceConvention::measured, robot).model;
   return model;

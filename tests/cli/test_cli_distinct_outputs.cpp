@@ -73,6 +73,10 @@ const Pair pairs[] = {
     {"scan {in} --overlay {out}", "img.png", "--overlay"},
     {"render-scan {out} --path-csv {in}", "p.csv", "output"},
     {"render-scan o.png --path-csv {in} --truth {out}", "p.csv", "--truth"},
+    {"campaign plan --robot {in} -o {out}", "r.json", "-o"},
+    {"geometry plan --robot {in} -o {out}", "r.json", "-o"},
+    {"geometry fit {in} -o {out}", "c.csv", "-o"},
+    {"geometry simulate --truth {in} --poses c.csv -o {out}", "r.json", "-o"},
 };
 
 std::string command_for(std::string text, const std::string& in, const std::string& out) {
@@ -138,6 +142,8 @@ TEST(DistinctOutputs, EveryCommandWithAnOutputIsWalked) {
     walked.insert(c.substr(0, c.find(' ', c.rfind("campaign", 0) == 0 ? 9 : 0)));
   }
   for (const char* d : {"experiment", "report", "plot"}) walked.insert(d);  // directory outputs: tests below
+  // Folders that must be new (linuxcnc config) or hold only the command's own files (calibrate plate).
+  for (const char* d : {"linuxcnc config", "calibrate plate"}) walked.insert(d);
   const CliResult top = run_cli("--help");
   std::istringstream lines(top.out);
   bool in_subcommands = false;

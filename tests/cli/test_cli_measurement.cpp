@@ -50,7 +50,11 @@ TEST(CliMeasure, HandComputedCampaignAndNominalForces) {
   const auto t = measurement::load_displacement_table((dir / "t.csv").string());
   EXPECT_NEAR(*t.rows[0].dx_m, 0.091e-3, 1e-9);
   EXPECT_NEAR(t.rows[1].force_N, (9.92 - 0.11) * 9.80665, 1e-4);
-  ASSERT_EQ(run_cli("measure '" + kData + "/campaign_hand.csv' --nominal-forces -o n.csv", dir.path()).exit_code, 0);
+  // Nominal loads are the campaign's own: a campaign without a force_nominal_N column needs the step's load.
+  const CliResult refused = run_cli("measure '" + kData + "/campaign_hand.csv' --nominal-forces -o n.csv", dir.path());
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_FALSE(std::filesystem::exists(dir / "n.csv"));
+  ASSERT_EQ(run_cli("measure '" + kData + "/campaign_hand.csv' --nominal-forces --nominal-step-N 50 -o n.csv", dir.path()).exit_code, 0);
   const auto n = measurement::load_displacement_table((dir / "n.csv").string());
   EXPECT_DOUBLE_EQ(n.rows[1].force_N, 100.0);
   EXPECT_DOUBLE_EQ(n.rows[1].force_kgf, 9.92);

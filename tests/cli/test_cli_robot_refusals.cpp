@@ -87,7 +87,7 @@ TEST(CliRobotRefusals, KinAndPlanHonourTheJointLimitsAndTheWorkspace) {
                                 q.y() * 180 / M_PI));
   const CliResult fk = w.run("kin fk --robot robot.json --theta1-deg 30 --theta2-deg 20");
   EXPECT_EQ(fk.exit_code, 2);
-  EXPECT_EQ(fk.err, "error: joint theta1 = 30 deg is outside its range [45.0, 225.0] deg on robot 'asym'\n");
+  EXPECT_EQ(fk.err, "error: joint theta1 = 0.523599 rad (30 deg) is outside its range [45.0, 225.0] deg on robot 'asym'\n");
   const CliResult stretched = w.run("kin ik --robot robot.json --x-mm 0 --y-mm 330");
   EXPECT_EQ(stretched.exit_code, 2);
   EXPECT_NE(stretched.err.find("too close to the stretched-out singularity: the left arm would reach"), std::string::npos)

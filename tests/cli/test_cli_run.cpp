@@ -39,7 +39,7 @@ TEST(CliRun, YMotionMatchesAnIndependentComputation) {
   TempDir dir;
   const CliResult plan = run_cli("plan " + kExamples + "y_motion.gcode --accel 5g -o traj.csv", dir.path());
   ASSERT_EQ(plan.exit_code, 0) << plan.err;
-  const CliResult run = run_cli("run " + kExamples + "y_motion.gcode --accel 5g -o joints.csv --json --compensation quasi-static --smooth-ms 0", dir.path());
+  const CliResult run = run_cli("run " + kExamples + "y_motion.gcode --accel 5g -o joints.csv --json --compensation quasi-static --smooth-ms 0 --model thesis-oc", dir.path());
   ASSERT_EQ(run.exit_code, 0) << run.err;
 
   // The thesis's per-point fits at x2y1 … x2y5 (the y motion runs along x = 222.132 mm, the grid's

@@ -20,6 +20,11 @@ std::shared_ptr<const compliance::Model> thesis(const std::string& name) {
   return std::shared_ptr<const compliance::Model>(loaded.model.release());
 }
 
+// The thesis's step (fig. 4.3, quasi-static) at gain k: what these tests check against eqs. 4.4-4.7.
+CompensatorOptions quasi_static(double k = 1.0, bool enabled = true, bool check_limits = true) {
+  return {.gain = k, .enabled = enabled, .check_limits = check_limits, .method = Method::quasi_static};
+}
+
 // A planar trajectory p(t) = c + A·(sin ωt, sin 2ωt) with its analytic derivatives.
 TaskSample lissajous(double t) {
   const double w = 2 * M_PI * 3.0;
@@ -80,7 +85,7 @@ TEST(Compensator, MatchesTheStraightforwardStepToRounding) {
   double worst_q = 0.0;
   for (const auto& model : models) {
     for (double k : {1.0, 0.8}) {
-      const Compensator comp(spec, model, {k, true, false});
+      const Compensator comp(spec, model, quasi_static(k, true, false));
       for (int i = 0; i < 3000; ++i) {
         TaskSample s;
         s.position_m = {0.222 + 0.06 * u(rng), 0.085 * u(rng)};
@@ -105,7 +110,7 @@ TEST(Compensator, MatchesTheStraightforwardStepToRounding) {
 
 TEST(Compensator, CommandedPoseLandsOnThePlanAfterThePredictedDeflection) {
   const auto spec = kinematics::load_robot("oc-gu");
-  const Compensator comp(spec, thesis("thesis-oc"));
+  const Compensator comp(spec, thesis("thesis-oc"), quasi_static());
   const auto robot = spec.five_bar();
   double worst = 0.0, largest = 0.0;
   for (double t = 0.0; t < 0.34; t += 0.0005) {
@@ -121,7 +126,7 @@ TEST(Compensator, CommandedPoseLandsOnThePlanAfterThePredictedDeflection) {
 
 TEST(Compensator, ZeroAccelerationGivesZeroCorrection) {
   const auto spec = kinematics::load_robot("sc-gl");
-  const Compensator comp(spec, thesis("thesis-sc"));
+  const Compensator comp(spec, thesis("thesis-sc"), quasi_static());
   TaskSample s;
   s.position_m = {0.25, -0.06};
   s.velocity_m_s = {0.3, 0.1};
@@ -134,7 +139,7 @@ TEST(Compensator, ZeroAccelerationGivesZeroCorrection) {
 
 TEST(Compensator, DAlembertForceIsMinusMassTimesAcceleration) {
   const auto spec = kinematics::load_robot("oc-gl");
-  const Compensator comp(spec, thesis("thesis-oc"));
+  const Compensator comp(spec, thesis("thesis-oc"), quasi_static());
   TaskSample s;
   s.position_m = {0.222132, 0.0};
   s.acceleration_m_s2 = {49.03325, 0.0};  // 5 g along +x
@@ -148,8 +153,8 @@ TEST(Compensator, DAlembertForceIsMinusMassTimesAcceleration) {
 TEST(Compensator, GainZeroEqualsNoCompensationAndGainScales) {
   const auto spec = kinematics::load_robot("oc-gu");
   const auto model = thesis("thesis-oc");
-  const Compensator off(spec, model, {1.0, false, true}), zero(spec, model, {0.0, true, true}),
-      half(spec, model, {0.5, true, true}), full(spec, model);
+  const Compensator off(spec, model, quasi_static(1.0, false, true)), zero(spec, model, quasi_static(0.0, true, true)),
+      half(spec, model, quasi_static(0.5, true, true)), full(spec, model, quasi_static());
   for (double t = 0.0; t < 0.3; t += 0.01) {
     const TaskSample s = lissajous(t);
     const JointCommand a = off.step(s), b = zero.step(s), h = half.step(s), f = full.step(s);
@@ -172,8 +177,8 @@ TEST(Compensator, MirroredPathGivesMirroredCorrectionsOnASymmetricRobot) {
       nodes.push_back({"n", c * 1e-6, Vec2::Zero(), {}});
     }
   }
-  const auto model = std::make_shared<compliance::GridModel>("bilinear", grid, nodes);
-  const Compensator comp(kinematics::load_robot("oc-gu"), model);
+  const auto model = std::make_shared<compliance::GridModel>(compliance::FitMethod::bilinear, grid, nodes);
+  const Compensator comp(kinematics::load_robot("oc-gu"), model, quasi_static());
   for (double t = 0.0; t < 0.3; t += 0.005) {
     TaskSample s = lissajous(t);
     TaskSample m = s;
@@ -188,7 +193,7 @@ TEST(Compensator, MirroredPathGivesMirroredCorrectionsOnASymmetricRobot) {
 }
 
 TEST(Compensator, JointVelocityAndAccelerationMatchDifferencesOfTheCommands) {
-  const Compensator comp(kinematics::load_robot("sc-gu"), thesis("thesis-sc-physical"));
+  const Compensator comp(kinematics::load_robot("sc-gu"), thesis("thesis-sc-physical"), quasi_static());
   const double h = 1e-5;
   for (double t = 0.01; t < 0.3; t += 0.013) {
     const JointCommand before = comp.step(lissajous(t - h)), now = comp.step(lissajous(t)),
@@ -203,7 +208,7 @@ TEST(Compensator, JointVelocityAndAccelerationMatchDifferencesOfTheCommands) {
 
 TEST(Compensator, RefusesUnreachableTargetsAndJointLimitViolationsWithoutNaN) {
   const auto spec = kinematics::load_robot("oc-gu");
-  const Compensator comp(spec, thesis("thesis-oc"));
+  const Compensator comp(spec, thesis("thesis-oc"), quasi_static());
   TaskSample s;
   s.position_m = {0.299, 0.0};
   JointCommand c = comp.step(s);
@@ -224,7 +229,7 @@ TEST(Compensator, OutsideGridPolicyErrorRefusesBeyondTheMarginOnly) {
   auto loaded = compliance::load_model("thesis-oc");
   ASSERT_EQ(loaded.model->outside_policy(), compliance::OutsidePolicy::error);  // the default
   const std::shared_ptr<const compliance::Model> model(loaded.model.release());
-  const Compensator comp(kinematics::load_robot("oc-gu"), model);
+  const Compensator comp(kinematics::load_robot("oc-gu"), model, quasi_static());
   TaskSample s;
   s.acceleration_m_s2 = {10.0, 0.0};
   s.position_m = {0.150, 0.0};  // 22 mm left of the grid
@@ -241,14 +246,14 @@ TEST(Compensator, OutsideGridPolicyErrorRefusesBeyondTheMarginOnly) {
   s.position_m = {0.222132, 0.0761};
   EXPECT_EQ(comp.step(s).status, Status::outside_grid);
   // Without compensation nothing is refused for the model's sake.
-  const Compensator off(kinematics::load_robot("oc-gu"), model, {1.0, false, true});
+  const Compensator off(kinematics::load_robot("oc-gu"), model, quasi_static(1.0, false, true));
   EXPECT_EQ(off.step(s).status, Status::ok);
 }
 
 TEST(Compensator, RejectsBadGain) {
   const auto spec = kinematics::load_robot("oc-gu");
-  EXPECT_THROW(Compensator(spec, thesis("thesis-oc"), {-1.0, true, true}), Error);
-  EXPECT_THROW(Compensator(spec, thesis("thesis-oc"), {std::nan(""), true, true}), Error);
+  EXPECT_THROW(Compensator(spec, thesis("thesis-oc"), quasi_static(-1.0, true, true)), Error);
+  EXPECT_THROW(Compensator(spec, thesis("thesis-oc"), quasi_static(std::nan(""), true, true)), Error);
   EXPECT_THROW(Compensator(spec, nullptr), Error);
 }
 

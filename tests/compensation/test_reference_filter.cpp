@@ -120,8 +120,8 @@ TEST(ReferenceFilter, ShaperWithMovingFrequencyHasConsistentRates) {
     for (std::size_t k = 100; k + 1 < out.size(); ++k) {
       const Vec2 v = (out[k + 1].position_m - out[k - 1].position_m) / (2 * kDt);
       const Vec2 a = (out[k + 1].velocity_m_s - out[k - 1].velocity_m_s) / (2 * kDt);
-      EXPECT_LT((out[k].velocity_m_s - v).norm(), 2e-4) << to_string(kind) << " " << k;
-      EXPECT_LT((out[k].acceleration_m_s2 - a).norm(), 2e-2) << to_string(kind) << " " << k;
+      EXPECT_LT((out[k].velocity_m_s - v).norm(), 2e-4) << core::enum_name(kind) << " " << k;
+      EXPECT_LT((out[k].acceleration_m_s2 - a).norm(), 2e-2) << core::enum_name(kind) << " " << k;
     }
   }
 }
@@ -156,7 +156,7 @@ TEST(ReferenceFilter, RefusesBadSettings) {
   o.kind = FilterKind::smooth;
   o.smooth_s = 0.0;
   EXPECT_THROW(ReferenceFilter(kRate, o), Error);
-  EXPECT_THROW(parse_filter_kind("box"), Error);
+  EXPECT_THROW(core::parse_enum<FilterKind>("box"), Error);
 }
 
 // The running sum of the moving average stays the sum: over a 20 M-sample job (2 h 47 min at 2 kHz) of an arc
@@ -322,8 +322,8 @@ TEST(SmoothCommands, MovingAverageRemovesTheVelocityStepOfTheCompensatedCommand)
     FilterChain smooth({ReferenceFilter(kRate, o), ReferenceFilter(kRate, o)});
     const auto smoothed = commands(kLine, smooth, comp);
     // Jerk steps of 5 g / 5 ms through Δ = C·m·a: the raw command's velocity steps by ~0.1 rad/s or more.
-    EXPECT_GT(velocity_jump(raw), 0.05) << to_string(method);
-    EXPECT_LT(velocity_jump(smoothed), 0.01) << to_string(method);
+    EXPECT_GT(velocity_jump(raw), 0.05) << core::enum_name(method);
+    EXPECT_LT(velocity_jump(smoothed), 0.01) << core::enum_name(method);
     expect_within_limits(smoothed, robot);
     EXPECT_EQ(smoothed.size(), raw.size() + 16);
   }
@@ -351,7 +351,7 @@ TEST(SmoothCommands, ShapedCommandsKeepTheLimits) {
                          ReferenceFilter(kRate, smoothing), ReferenceFilter(kRate, smoothing)});
       const auto c = commands(job, chain, comp);
       expect_within_limits(c, robot);
-      EXPECT_LT(velocity_jump(c), 0.01) << to_string(kind);
+      EXPECT_LT(velocity_jump(c), 0.01) << core::enum_name(kind);
     }
   }
 }

@@ -61,7 +61,7 @@ TEST(StepFinite, EveryFieldIsFiniteForAnyFiniteInputAndOptions) {
                 if (i % 11 == 0) s.snap_m_s4 = {wild(rng), wild(rng)};
                 if (i % 13 == 0) s.t_s = wild(rng);
                 const JointCommand c = comp.step(s);
-                ASSERT_TRUE(all_finite(c)) << name << " method " << to_string(method) << " gain " << gain << " i " << i;
+                ASSERT_TRUE(all_finite(c)) << name << " method " << core::enum_name(method) << " gain " << gain << " i " << i;
                 refused_not_finite += c.status == Status::not_finite;
                 ok += c.status == Status::ok;
               }

@@ -21,10 +21,9 @@ namespace {
 class ConstantModel final : public Model {
  public:
   explicit ConstantModel(const Mat2& c) : c_(c) {}
-  [[nodiscard]] std::string method() const override { return "constant"; }
+  [[nodiscard]] std::string description() const override { return "constant"; }
   [[nodiscard]] Mat2 compliance(const Vec2&) const noexcept override { return c_; }
   [[nodiscard]] GridBounds bounds() const noexcept override { return {0.172, 0.272, -0.075, 0.075}; }
-  [[nodiscard]] nlohmann::json parameters() const override { return nlohmann::json::object(); }
 
  private:
   Mat2 c_;
@@ -63,14 +62,14 @@ TEST(ModelCheck, PositiveDefiniteExactlyWhenTheSymmetricPartsEigenvaluesArePosit
 TEST(ModelCheck, EveryThesisModelIsPhysicalAndANegatedOneIsRefusedAtLoadAndAtFit) {
   for (const char* preset : {"oc-gu", "sc-gu"}) {
     const auto robot = kinematics::load_robot(preset);
-    for (const auto& method : method_names()) {
-      const auto model = load_robot_model(robot, {"", method});
-      EXPECT_FALSE(find_model_defect(*model.model).has_value()) << preset << " " << method;
+    for (const auto& [method, name] : core::EnumNames<FitMethod>::names) {
+      const auto model = load_robot_model(robot, {.model = "", .method = method});
+      EXPECT_FALSE(find_model_defect(*model.model).has_value()) << preset << " " << name;
     }
   }
   // The physical model of OC with every D coefficient negated, as a model file: refused at D_um_per_N.
   const auto robot = kinematics::load_robot("oc-gu");
-  const auto fitted = load_robot_model(robot, {"", "physical"});
+  const auto fitted = load_robot_model(robot, {.model = "", .method = FitMethod::physical});
   nlohmann::json doc = model_to_json(*fitted.model, fitted.provenance);
   for (auto& row : doc["D_um_per_N"]) {
     for (auto& v : row) v = -v.get<double>();
@@ -87,7 +86,7 @@ TEST(ModelCheck, EveryThesisModelIsPhysicalAndANegatedOneIsRefusedAtLoadAndAtFit
   auto table = test::synthetic_table([](const Vec2&) { Mat2 c; c << -1.5e-6, 0.1e-6, 0.1e-6, -1.2e-6; return c; },
                                      [](const Vec2&) { return Vec2::Zero(); });
   try {
-    (void)fit_model(table, "OC", "bilinear", ForceConvention::measured, robot);
+    (void)fit_model(table, "OC", FitMethod::bilinear, ForceConvention::measured, robot);
     FAIL();
   } catch (const Error& e) {
     const std::string what = e.what();
@@ -107,7 +106,7 @@ TEST(ModelCheck, AGridModelIsCheckedAtEveryNode) {
       },
       [](const Vec2&) { return Vec2::Zero(); });
   try {
-    (void)fit_model(table, "OC", "bilinear", ForceConvention::measured, kinematics::load_robot("oc-gu"));
+    (void)fit_model(table, "OC", FitMethod::bilinear, ForceConvention::measured, kinematics::load_robot("oc-gu"));
     FAIL();
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("at (222.132, 37.500) mm"), std::string::npos) << e.what();
@@ -137,7 +136,7 @@ TEST(FitBudget, BeyondTheBudgetsTheWorkIsRefusedBeforeItStarts) {
   }
   const auto robot = kinematics::load_robot("oc-gu");
   try {
-    (void)fit_model(table, "", "auto", ForceConvention::measured, robot);
+    (void)fit_model(table, "", std::nullopt, ForceConvention::measured, robot);
     FAIL();
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("many.csv: LIMIT: cross-validation refits every method once per point; it "
@@ -146,7 +145,7 @@ TEST(FitBudget, BeyondTheBudgetsTheWorkIsRefusedBeforeItStarts) {
         << e.what();
   }
   try {
-    (void)fit_model(table, "", "physical-0", ForceConvention::measured, robot);
+    (void)fit_model(table, "", FitMethod::physical_0, ForceConvention::measured, robot);
   } catch (const Error& e) {
     ADD_FAILURE() << e.what();
   }
@@ -158,9 +157,9 @@ TEST(FitBudget, BeyondTheBudgetsTheWorkIsRefusedBeforeItStarts) {
   // Samples: one point's samples repeated until they are one more than any fit's 100 000.
   PointSamples one = fewer.front();
   one.samples.assign(max_fit_samples, one.samples.front());
-  EXPECT_NO_THROW(check_fit_budget({one}, "bilinear", "heavy.csv"));
+  EXPECT_NO_THROW(check_fit_budget({one}, FitMethod::bilinear, "heavy.csv"));
   one.samples.push_back(one.samples.front());
-  EXPECT_THROW(check_fit_budget({one}, "bilinear", "heavy.csv"), Error);
+  EXPECT_THROW(check_fit_budget({one}, FitMethod::bilinear, "heavy.csv"), Error);
 }
 
 }  // namespace

@@ -121,11 +121,11 @@ TEST(CrossValidation, PhysicalModelIsExactOnDataItCanRepresent) {
   const CvReport report = cross_validate(group_by_point(table, ForceConvention::measured), kThesis, table.source);
   ASSERT_EQ(report.methods.size(), 6u);
   const CvMethod& physical = report.methods[3];
-  EXPECT_EQ(physical.method, "physical");
+  EXPECT_EQ(physical.method, FitMethod::physical);
   EXPECT_EQ(physical.predicted, 15);
   EXPECT_LT(physical.max_um, 1e-6);
   const CvMethod& spline = report.methods[5];  // its physical part takes it all, the spline nothing
-  EXPECT_EQ(spline.method, "physical-spline");
+  EXPECT_EQ(spline.method, FitMethod::physical_spline);
   EXPECT_EQ(spline.predicted, 15);
   EXPECT_LT(spline.max_um, 1e-6);
   const CvMethod& bilinear = report.methods[0];
@@ -162,7 +162,7 @@ TEST(GridModel, BatchEqualsOnePointAtATimeAndEquation412ByHand) {
   std::mt19937_64 rng(12);
   std::uniform_real_distribution<double> ux(0.15, 0.29), uy(-0.09, 0.10);
   for (OutsidePolicy policy : {OutsidePolicy::clamp, OutsidePolicy::extrapolate}) {
-    GridModel model("bilinear", grid, nodes);
+    GridModel model(FitMethod::bilinear, grid, nodes);
     model.set_outside_policy(policy);
     std::vector<Vec2> points{{0.20, -0.01}, {0.17, 0.08}, {0.27, -0.07}};
     for (int i = 0; i < 500; ++i) points.emplace_back(ux(rng), uy(rng));
@@ -186,11 +186,12 @@ TEST(ModelFile, RoundTripsEveryMethod) {
   const auto table = test::synthetic_table([](const Vec2& p) { return known_physical()->compliance(p); },
                                            [](const Vec2& p) { return Vec2(p.y() * 1e-4, 2e-6); }, 1e-6, 9);
   test::TempDir dir;
-  for (const std::string method : {"bilinear", "symmetric", "physical", "physical-2", "physical-spline"}) {
+  for (const FitMethod method : {FitMethod::bilinear, FitMethod::symmetric, FitMethod::physical, FitMethod::physical_2,
+                                 FitMethod::physical_spline}) {
     auto fitted = fit_model(table, "OC", method, ForceConvention::measured, kinematics::load_robot("oc-gu"));
     fitted.model->set_outside_policy(OutsidePolicy::extrapolate);
     fitted.model->set_zero_force(ZeroForce::thesis_raw);
-    const auto path = (dir / (method + ".json")).string();
+    const auto path = (dir / (std::string(core::enum_name(method)) + ".json")).string();
     save_model(path, *fitted.model, fitted.provenance);
     const LoadedModel back = load_model_file(core::DataRef{path, false});
     EXPECT_EQ(back.model->outside_policy(), OutsidePolicy::extrapolate);
@@ -200,7 +201,7 @@ TEST(ModelFile, RoundTripsEveryMethod) {
     EXPECT_EQ(kinematics::geometry_hash(*back.provenance.geometry), kinematics::load_robot("oc-gu").geometry_hash());
     for (const Vec2& p : {Vec2(0.2, 0.01), Vec2(0.26, -0.07), Vec2(0.28, 0.085)}) {  // the last one off the grid
       const Vec2 F{150.0, -90.0};
-      EXPECT_LT((back.model->predict(p, F) - fitted.model->predict(p, F)).norm(), 1e-12) << method;
+      EXPECT_LT((back.model->predict(p, F) - fitted.model->predict(p, F)).norm(), 1e-12) << core::enum_name(method);
     }
   }
 }
@@ -222,7 +223,7 @@ std::string load_error(const nlohmann::json& doc) {
 TEST(ModelFile, BadFieldsAreNamed) {
   const auto table = test::synthetic_table([](const Vec2&) { return Mat2(Mat2::Identity() * 1e-6); },
                                            [](const Vec2&) { return Vec2::Zero(); });
-  const auto fitted = fit_model(table, "OC", "bilinear", ForceConvention::measured, kinematics::load_robot("oc-gu"));
+  const auto fitted = fit_model(table, "OC", FitMethod::bilinear, ForceConvention::measured, kinematics::load_robot("oc-gu"));
   const nlohmann::json good = model_to_json(*fitted.model, fitted.provenance);
   auto bad = good;
   bad["nodes"][3]["C_um_per_N"] = {{1, 2}, {3}};
@@ -246,8 +247,9 @@ TEST(ModelFile, BadFieldsAreNamed) {
   EXPECT_EQ(load_error(bad), "robot.geometry_sha256: does not match the geometry recorded beside it (was the file edited?)");
   bad = good;
   bad["outside_policy"] = "wrap";
-  EXPECT_NE(load_error(bad).find("outside-grid policy 'wrap'"), std::string::npos);
-  const auto physical = fit_model(table, "OC", "physical", ForceConvention::measured, kinematics::load_robot("oc-gu"));
+  EXPECT_NE(load_error(bad).find("outside_policy"), std::string::npos) << load_error(bad);
+  EXPECT_NE(load_error(bad).find("error, clamp or extrapolate, got 'wrap'"), std::string::npos) << load_error(bad);
+  const auto physical = fit_model(table, "OC", FitMethod::physical, ForceConvention::measured, kinematics::load_robot("oc-gu"));
   bad = model_to_json(*physical.model, physical.provenance);
   bad["D_um_per_N"].erase(2);
   EXPECT_EQ(load_error(bad), "D_um_per_N: order 1 needs 3 entries, got 2");
@@ -257,9 +259,9 @@ TEST(ModelFactory, UnknownMethodAndMechanismAreNamed) {
   const auto table = test::synthetic_table([](const Vec2&) { return Mat2(Mat2::Identity() * 1e-6); },
                                            [](const Vec2&) { return Vec2::Zero(); });
   const auto robot = kinematics::load_robot("oc-gu");
-  EXPECT_THROW((void)fit_model(table, "OC", "kriging", ForceConvention::measured, robot), Error);
+  EXPECT_THROW((void)parse_fit_method("kriging"), Error);
   try {
-    (void)fit_model(table, "SC", "bilinear", ForceConvention::measured, robot);
+    (void)fit_model(table, "SC", FitMethod::bilinear, ForceConvention::measured, robot);
     FAIL();
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("no rows with mechanism 'SC' (the table has: OC)"), std::string::npos);

@@ -133,11 +133,11 @@ TEST(PhysicalSplineModel, TheLatticeReadsTheFormulaInsideTheRectangleAndTheFormu
 
 TEST(PhysicalSplineModel, ModelFilesRoundTripAndRefuseABrokenSpline) {
   const Thesis t;
-  const LoadedModel fitted = fit_model(t.table, "OC", "physical-spline", ForceConvention::measured, t.robot);
-  ASSERT_EQ(fitted.model->method(), "physical-spline");
+  const LoadedModel fitted = fit_model(t.table, "OC", FitMethod::physical_spline, ForceConvention::measured, t.robot);
+  ASSERT_EQ(fitted.model->method(), FitMethod::physical_spline);
   const nlohmann::json doc = model_to_json(*fitted.model, fitted.provenance);
   const LoadedModel back = model_from_json(core::parse_json_document(doc.dump(2), "m.json"));
-  ASSERT_EQ(back.model->method(), "physical-spline");
+  ASSERT_EQ(back.model->method(), FitMethod::physical_spline);
   for (const Vec2& p : {Vec2(0.2, 0.01), Vec2(0.26, -0.07), Vec2(0.172132, 0.075), Vec2(0.25, 0.0305)}) {
     EXPECT_LT(relative(back.model->compliance(p), fitted.model->compliance(p)), 1e-12) << p.transpose();
   }
@@ -174,12 +174,12 @@ TEST(PhysicalSplineModel, CrossValidationFavoursItOnTheThesisTables) {
     const auto robot = kinematics::load_robot(name);
     const auto table = robot_table(robot);
     const CvReport report = cross_validate(group_by_point(table, ForceConvention::measured), robot.geometry, table.source);
-    std::vector<std::pair<std::string, double>> scores;
-    EXPECT_EQ(favoured_method(report, &scores), "physical-spline") << name;
+    std::vector<std::pair<FitMethod, double>> scores;
+    EXPECT_EQ(favoured_method(report, &scores), FitMethod::physical_spline) << name;
     double spline = 0.0, physical = 0.0;
     for (const auto& [method, score] : scores) {
-      if (method == "physical-spline") spline = score;
-      if (method == "physical") physical = score;
+      if (method == FitMethod::physical_spline) spline = score;
+      if (method == FitMethod::physical) physical = score;
     }
     EXPECT_LT(spline, 0.8 * physical) << name;
   }

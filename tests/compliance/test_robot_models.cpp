@@ -100,7 +100,7 @@ TEST(RobotModels, AModelKnowsItsGeometryAndIsRefusedForAnother) {
 
 TEST(RobotModels, FormatOneFilesStillLoad) {
   // A physical model file as version 1 wrote it: the thesis robot's link length, no robot block.
-  const auto fitted = fit_model(measurement::load_displacement_table(measurement::thesis_dataset()), "OC", "physical",
+  const auto fitted = fit_model(measurement::load_displacement_table(measurement::thesis_dataset()), "OC", FitMethod::physical,
                                 ForceConvention::measured, kinematics::load_robot("oc-gu"));
   nlohmann::json doc = model_to_json(*fitted.model, fitted.provenance);
   doc["version"] = 1;
@@ -139,17 +139,17 @@ TEST(RobotModels, CrossValidationOnAnIrregularLayoutRunsThePhysicalModelsOnly) {
   const CvReport r = cross_validate(group_by_point(table, ForceConvention::measured),
                                     kinematics::FiveBarGeometry::thesis(0.15), table.source);
   ASSERT_EQ(r.skipped.size(), 2U);
-  EXPECT_EQ(r.skipped[0].method, "bilinear");
-  EXPECT_EQ(r.skipped[1].method, "symmetric");
+  EXPECT_EQ(r.skipped[0].method, FitMethod::bilinear);
+  EXPECT_EQ(r.skipped[1].method, FitMethod::symmetric);
   ASSERT_EQ(r.methods.size(), 4U);
-  EXPECT_EQ(r.methods[0].method, "physical-0");
-  EXPECT_EQ(r.methods[3].method, "physical-spline");
+  EXPECT_EQ(r.methods[0].method, FitMethod::physical_0);
+  EXPECT_EQ(r.methods[3].method, FitMethod::physical_spline);
   EXPECT_EQ(r.methods[1].predicted, 14);
   int interior = 0;
   for (const auto& p : r.methods[1].points) interior += p.interior;
   EXPECT_EQ(interior, 2);  // x2y2 and x2y4: strictly inside the points' rectangle
-  std::vector<std::pair<std::string, double>> scores;
-  const std::string best = favoured_method(r, &scores);
+  std::vector<std::pair<FitMethod, double>> scores;
+  const FitMethod best = favoured_method(r, &scores);
   ASSERT_EQ(scores.size(), 4U);
   const auto smallest = std::min_element(scores.begin(), scores.end(),
                                          [](const auto& a, const auto& b) { return a.second < b.second; });
@@ -159,15 +159,21 @@ TEST(RobotModels, CrossValidationOnAnIrregularLayoutRunsThePhysicalModelsOnly) {
 TEST(RobotModels, AutoPicksTheMethodCrossValidationFavoursAndRecordsWhy) {
   const auto robot = kinematics::load_robot("oc-gu");
   const auto table = measurement::load_displacement_table(robot.compliance.table);
-  const LoadedModel m = fit_model(table, "OC", "auto", ForceConvention::measured, robot);
-  EXPECT_EQ(m.model->method(), "physical-spline");  // 16.3 µm on the common points against 90.1 for bilinear
-  EXPECT_EQ(m.provenance.selected_by, "cross-validation");
+  const LoadedModel m = fit_model(table, "OC", std::nullopt, ForceConvention::measured, robot);
+  EXPECT_EQ(m.model->method(), FitMethod::physical_spline);  // 16.3 µm on the common points against 90.1 for bilinear
+  EXPECT_EQ(m.provenance.selected_by, MethodSelection::cross_validation);
   EXPECT_NEAR(m.provenance.selection["mean_error_um"]["bilinear"].get<double>(), 90.07, 0.01);
   EXPECT_NEAR(m.provenance.selection["mean_error_um"]["physical"].get<double>(), 24.12, 0.01);
   EXPECT_LT(m.provenance.selection["mean_error_um"]["physical-spline"].get<double>(), 17.0);
-  // The robot file's method wins over cross-validation: the presets keep the thesis's bilinear model.
-  EXPECT_EQ(load_robot_model(robot).model->method(), "bilinear");
-  EXPECT_EQ(load_robot_model(robot, {"", "physical", false, ForceConvention::measured}).model->method(), "physical");
+  // The presets name no method: their own model is the one cross-validation favours, as for any robot.
+  EXPECT_EQ(load_robot_model(robot).model->method(), FitMethod::physical_spline);
+  // A method the robot file names wins over cross-validation, and one the request names over both.
+  kinematics::Robot named = robot;
+  named.compliance.method = FitMethod::bilinear;
+  EXPECT_EQ(load_robot_model(named).model->method(), FitMethod::bilinear);
+  ModelRequest physical;
+  physical.method = FitMethod::physical;
+  EXPECT_EQ(load_robot_model(named, physical).model->method(), FitMethod::physical);
 }
 
 }  // namespace

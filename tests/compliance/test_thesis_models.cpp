@@ -54,8 +54,8 @@ TEST(ThesisCrossValidation, OcMeetsTheTargetsAndBeatsBilinear) {
   const CvReport r = cross_validate(group_by_point(table, ForceConvention::measured), kinematics::FiveBarGeometry::thesis(0.150), "thesis");
   const CvMethod& bilinear = r.methods[0];
   const CvMethod& physical = r.methods[3];
-  ASSERT_EQ(bilinear.method, "bilinear");
-  ASSERT_EQ(physical.method, "physical");
+  ASSERT_EQ(bilinear.method, FitMethod::bilinear);
+  ASSERT_EQ(physical.method, FitMethod::physical);
   // The issue: interpolating the middle column linearly from its neighbours misses by about 90 µm.
   EXPECT_NEAR(bilinear.interior_mean_um, 90.0, 5.0);
   // Target for our best model there: ≤ 25 µm mean, close to the arm's ±23 µm.
@@ -73,13 +73,13 @@ TEST(ThesisCrossValidation, ScPhysicalBeatsBilinearToo) {
 TEST(ThesisModels, SymmetricAndPhysicalArePositiveDefiniteOverTheWorkspace) {
   for (const std::string build : {"OC", "SC"}) {
     const auto table = measurement::load_displacement_table(measurement::thesis_dataset());
-    for (const std::string method : {"symmetric", "physical"}) {
+    for (const FitMethod method : {FitMethod::symmetric, FitMethod::physical}) {
       const auto m = fit_model(table, build, method, ForceConvention::measured, kinematics::load_robot("oc-gu"));
       for (double x = 0.172132; x <= 0.272133; x += 0.005) {
         for (double y = -0.075; y <= 0.0750001; y += 0.005) {
           const Mat2 c = m.model->compliance({x, y});
-          ASSERT_NEAR(c(0, 1), c(1, 0), 1e-20) << build << " " << method;
-          ASSERT_GT(Eigen::SelfAdjointEigenSolver<Mat2>(c).eigenvalues()(0), 0.0) << build << " " << method << " " << x
+          ASSERT_NEAR(c(0, 1), c(1, 0), 1e-20) << build << " " << core::enum_name(method);
+          ASSERT_GT(Eigen::SelfAdjointEigenSolver<Mat2>(c).eigenvalues()(0), 0.0) << build << " " << core::enum_name(method) << " " << x
                                                                                    << ", " << y;
         }
       }
@@ -89,13 +89,13 @@ TEST(ThesisModels, SymmetricAndPhysicalArePositiveDefiniteOverTheWorkspace) {
 
 TEST(ThesisModels, BuiltInModelsAreTheThesisBilinearFits) {
   const auto oc = load_model("thesis-oc");
-  EXPECT_EQ(oc.model->method(), "bilinear");
+  EXPECT_EQ(oc.model->method(), FitMethod::bilinear);
   EXPECT_EQ(oc.provenance.rows, "OC");
   EXPECT_EQ(oc.provenance.robot, "oc-gu");
   EXPECT_EQ(oc.provenance.sha256.size(), 64u);
   // At x3y5 the y compliance is the −y table's slope: ≈ 6.9 µm/N.
   EXPECT_NEAR(oc.model->compliance({0.272132, 0.075})(1, 1) * 1e6, 6.9, 0.1);
-  EXPECT_EQ(load_model("thesis-sc-physical").model->method(), "physical");
+  EXPECT_EQ(load_model("thesis-sc-physical").model->method(), FitMethod::physical);
   EXPECT_THROW((void)load_model("thesis-xx"), Error);
   EXPECT_THROW((void)load_model("thesis-oc-kriging"), Error);
 }

@@ -57,7 +57,7 @@ TEST(PredictionUncertainty, BandsHoldAboutNinetyFivePercentOfHeldOutCellsOnAKnow
     c << 0.6e-6 + 2e-6 * (p.x() - 0.2) + bump, 0.05e-6, 0.05e-6, 1.8e-6 + 8e-6 * (p.x() - 0.2) * (p.x() - 0.2) - bump;
     return c;
   };
-  for (const char* method : {"physical", "physical-spline"}) {
+  for (const FitMethod method : {FitMethod::physical, FitMethod::physical_spline}) {
     int cells = 0, inside = 0;
     for (unsigned seed = 1; seed <= 3; ++seed) {
       const auto table = test::synthetic_table(field, [](const Vec2&) { return Vec2(0, 0); }, 11.5e-6, seed);
@@ -69,7 +69,7 @@ TEST(PredictionUncertainty, BandsHoldAboutNinetyFivePercentOfHeldOutCellsOnAKnow
         }
         const auto loo = leave_one_out_compliance(method, rest, g, "t");  // exercise the same path as fit
         std::unique_ptr<Model> model;
-        if (std::string(method) == "physical") {
+        if (method == FitMethod::physical) {
           model = fit_physical_model(rest, g, 1, "t", false);
         } else {
           model = fit_physical_spline_model(rest, g, "t", false);
@@ -90,9 +90,10 @@ TEST(PredictionUncertainty, BandsHoldAboutNinetyFivePercentOfHeldOutCellsOnAKnow
         }
       }
     }
-    std::printf("%s: %d of %d held-out cells inside their 95 %% band\n", method, inside, cells);
-    EXPECT_GE(inside, cells * 88 / 100) << method;
-    EXPECT_LE(inside, cells * 995 / 1000) << method;  // not so wide that it holds everything
+    const std::string name(core::enum_name(method));
+    std::printf("%s: %d of %d held-out cells inside their 95 %% band\n", name.c_str(), inside, cells);
+    EXPECT_GE(inside, cells * 88 / 100) << name;
+    EXPECT_LE(inside, cells * 995 / 1000) << name;  // not so wide that it holds everything
   }
 }
 
@@ -103,16 +104,17 @@ TEST(PredictionUncertainty, TheThesisTablesBandsHoldNinetyToNinetyEightPercent) 
     const CvReport report = cross_validate(points, robot.geometry, "thesis", ZeroForce::relative, true);
     for (const auto& m : report.methods) {
       const double fraction = static_cast<double>(m.inside_band) / m.band_cells;
-      std::printf("%s %-16s %d/%d cells inside (%.1f %%), mean half-width %.1f um\n", build, m.method.c_str(),
+      std::printf("%s %-16s %d/%d cells inside (%.1f %%), mean half-width %.1f um\n", build, std::string(core::enum_name(m.method)).c_str(),
                   m.inside_band, m.band_cells, 100 * fraction, m.mean_band_um);
       ASSERT_GT(m.band_cells, 40);
       // The target for the band predict states: bilinear (the presets' named method) and physical-spline
       // (what cross-validation favours) in 90–98 %; every method at least 85 %.
-      if (m.method == "bilinear" || m.method == "physical-spline") {
-        EXPECT_GE(fraction, 0.90) << build << " " << m.method;
-        EXPECT_LE(fraction, 0.98) << build << " " << m.method;
+      const std::string name(core::enum_name(m.method));
+      if (m.method == FitMethod::bilinear || m.method == FitMethod::physical_spline) {
+        EXPECT_GE(fraction, 0.90) << build << " " << name;
+        EXPECT_LE(fraction, 0.98) << build << " " << name;
       }
-      EXPECT_GE(fraction, 0.85) << build << " " << m.method;
+      EXPECT_GE(fraction, 0.85) << build << " " << name;
     }
   }
 }

@@ -17,10 +17,18 @@
 namespace stiffpath::measurement {
 namespace {
 
+// The replica of the robots the hand campaign and the thesis were measured with (fig. 2.4).
+ProcessOptions thesis_replica() {
+  ProcessOptions o;
+  o.mechanism = "OC";
+  o.geometry = {0.069, 0.160};
+  return o;
+}
+
 const std::string kHand = std::string(STIFFPATH_TEST_DATA_DIR) + "/campaign_hand.csv";
 
 TEST(PlatformPose, Eq23PutsGOnTheSegmentAt69Over160) {
-  const ReplicaGeometry geo;  // |UG| = 69 mm, |UL| = 160 mm
+  const ReplicaGeometry geo{0.069, 0.160};  // the presets' replica: |UG| = 69 mm, |UL| = 160 mm
   const Vec3 U(0.1, 0.2, 0.3), L(0.1, 0.2, 0.14);
   const Vec3 G = cg_point(U, L, geo);
   EXPECT_NEAR((G - U).norm(), 0.069, 1e-15);
@@ -53,9 +61,13 @@ TEST(ProcessCampaign, HandComputedCampaign) {
   const Campaign c = load_campaign(kHand);
   ASSERT_EQ(c.readings.size(), 4U);
   EXPECT_NEAR(c.readings[1].force_N, 5.0 * 9.80665, 1e-12);
-  const DisplacementTable t = process_campaign(c, {});
+  ProcessOptions options = thesis_replica();
+  options.nominal_step_N = 50.0;  // the hand campaign has no force_nominal_N column: its steps are of 50 N
+  const DisplacementTable t = process_campaign(c, options);
   ASSERT_EQ(t.rows.size(), 2U);
   const auto& s1 = t.rows[0];
+  // Without a nominal step, the nominal force is the measured one (no other robot's loads are assumed).
+  EXPECT_DOUBLE_EQ(process_campaign(c, thesis_replica()).rows[0].nominal_force_N, s1.force_N);
   EXPECT_EQ(s1.mechanism, "OC");
   EXPECT_EQ(s1.step, 1);
   EXPECT_NEAR(s1.force_N, (5.0 - 0.11) * 9.80665, 1e-9);  // relative to step 0 (table 2.1)
@@ -80,9 +92,12 @@ TEST(ProcessCampaign, HandComputedCampaign) {
 
 TEST(ProcessCampaign, NominalForcesReplaceFNOnly) {
   const Campaign c = load_campaign(kHand);
-  ProcessOptions o;
+  ProcessOptions o = thesis_replica();
   o.force_basis = ForceBasis::nominal;
   o.mechanism = "SC";
+  // The campaign names no nominal loads: asking for them without a step is refused, not the thesis's 50 N.
+  EXPECT_THROW((void)process_campaign(c, o), Error);
+  o.nominal_step_N = 50.0;
   const DisplacementTable t = process_campaign(c, o);
   EXPECT_EQ(t.rows[1].mechanism, "SC");
   EXPECT_DOUBLE_EQ(t.rows[1].force_N, 100.0);
@@ -93,7 +108,7 @@ TEST(ProcessCampaign, NominalForcesReplaceFNOnly) {
 TEST(ProcessCampaign, SavedTableKeepsTheSpreadAndReloads) {
   test::TempDir dir;
   const auto path = (dir / "table.csv").string();
-  save_displacement_table(process_campaign(load_campaign(kHand), {}), path);
+  save_displacement_table(process_campaign(load_campaign(kHand), thesis_replica()), path);
   const DisplacementTable back = load_displacement_table(path);
   ASSERT_EQ(back.rows.size(), 2U);
   EXPECT_FALSE(back.rows[0].spread.has_value());
@@ -110,7 +125,7 @@ TEST(ProcessCampaign, ATableItsOwnReaderWouldRefuseIsNotWritten) {
                                   "P,200,0,+x,0,0.11,200,0,160,200,0,0\n"
                                   "P,200,0,+x,1,5,5.7e10,0,160,200,0,0\n"
                                   "P,200,0,+x,2,9.92,200.3,0,160,200,0,0\n");
-  const auto table = process_campaign(load_campaign((dir / "c.csv").string()), {});
+  const auto table = process_campaign(load_campaign((dir / "c.csv").string()), thesis_replica());
   const auto path = (dir / "table.csv").string();
   try {
     save_displacement_table(table, path);
@@ -126,7 +141,7 @@ TEST(ProcessCampaign, ATableItsOwnReaderWouldRefuseIsNotWritten) {
                                    "P,200,0,+x,0,0.11,200,0,160,200,0,0\n"
                                    "P,200,0,+x,1,5,200.1,0,160,200,0,0\n"
                                    "P,200,0,+x,2,9.92,200.3,0,160,200,0,0\n");
-  save_displacement_table(process_campaign(load_campaign((dir / "ok.csv").string()), {}), path);
+  save_displacement_table(process_campaign(load_campaign((dir / "ok.csv").string()), thesis_replica()), path);
   EXPECT_EQ(load_displacement_table(path).rows.size(), 2U);
 }
 

@@ -61,10 +61,17 @@ DisplacementTable synthetic(const std::string& mechanism, double scale) {
   return t;
 }
 
+// The presets' replica: |UL| sets an angle cell's accuracy, so the angles are checked too.
+DataCheckOptions with_replica() {
+  DataCheckOptions o;
+  o.ul_m = 0.160;
+  return o;
+}
+
 TEST(DataCheck, ConsistentSyntheticTablePassesEverything) {
   DisplacementTable t = synthetic("OC", 1.0);
   for (const auto& r : synthetic("SC", 2.0).rows) t.rows.push_back(r);
-  const auto rep = check_displacements(t);
+  const auto rep = check_displacements(t, with_replica());
   EXPECT_EQ(rep.linearity.size(), 2U * 2U * 10U * 5U);
   EXPECT_EQ(rep.reciprocity.size(), 20U);
   EXPECT_EQ(rep.comparison.size(), 2U * 10U * 5U);
@@ -83,7 +90,7 @@ TEST(DataCheck, PlantedFaultsAreFlaggedWhereTheyAre) {
   for (auto& r : t.rows) {
     if (r.point == "x1y1" && r.direction == ForceDirection::plus_x && r.step == 3) *r.dx_m += 60e-6;  // kink
   }
-  const auto rep = check_displacements(t);
+  const auto rep = check_displacements(t, with_replica());
   int lin = 0, sym = 0;
   for (const auto& l : rep.linearity) {
     if (l.flagged) {
@@ -110,16 +117,16 @@ TEST(DataCheck, PlantedFaultsAreFlaggedWhereTheyAre) {
   for (auto& r : u.rows) {
     if (r.point == "x2y2" && r.direction == ForceDirection::plus_x) *r.dy_m *= 2.0;
   }
-  for (const auto& r : check_displacements(u).reciprocity) EXPECT_EQ(r.flagged, r.point == "x2y2") << r.point;
+  for (const auto& r : check_displacements(u, with_replica()).reciprocity) EXPECT_EQ(r.flagged, r.point == "x2y2") << r.point;
 }
 
 // Nominal forces (50 … 250 N) are 2.9–4.3 % above the measured ones: regressed on them, an exactly linear
 // series gets a slope smaller by the factor b of F_measured ≈ a + b·F_nominal.
 TEST(DataCheck, NominalForcesScaleTheSlopes) {
   const DisplacementTable t = synthetic("OC", 1.0);
-  DataCheckOptions nominal;
+  DataCheckOptions nominal = with_replica();
   nominal.nominal_forces = true;
-  const auto a = check_displacements(t), b = check_displacements(t, nominal);
+  const auto a = check_displacements(t, with_replica()), b = check_displacements(t, nominal);
   double fm[5], fn[5];
   for (int s = 0; s < 5; ++s) fm[s] = t.rows[static_cast<std::size_t>(s)].force_N, fn[s] = 50.0 * (s + 1);
   const double factor = fit_line(fn, fm).slope;
@@ -131,7 +138,9 @@ TEST(DataCheck, NominalForcesScaleTheSlopes) {
 }
 
 TEST(DataCheck, ThesisDataSet) {
-  const auto rep = check_displacements(load_displacement_table(measurement::thesis_dataset()));
+  DataCheckOptions options;
+  options.ul_m = 0.160;  // the presets' replica: |UL| sets the angle cells' accuracy
+  const auto rep = check_displacements(load_displacement_table(measurement::thesis_dataset()), options);
   // Table 3.4's odd cell (OC +x x3y5 rx = 0.023° at 150 N) breaks linearity beyond 2·23 µm/160 mm.
   bool found = false;
   for (const auto& l : rep.linearity) {
@@ -214,12 +223,14 @@ TEST(DataCheck, MirrorPartnersAreTheFirstRowsWithinOneMicrometreAsAPlainScanFind
 // A series of one or two cells fits any line exactly (one cell: slope 0): it is not counted as checked.
 TEST(DataCheck, SeriesOfFewerThanThreeCellsAreSkippedNotCountedAsChecked) {
   DisplacementTable t = synthetic("OC", 1.0);
-  const std::size_t full = check_displacements(t).linearity.size();
+  DataCheckOptions with_angles;
+  with_angles.ul_m = 0.160;  // the replica's |UL|: rx and ry are checked too
+  const std::size_t full = check_displacements(t, with_angles).linearity.size();
   // Keep only step 1 of one series (+x at x1y1).
   std::erase_if(t.rows, [](const DisplacementRow& r) {
     return r.point == "x1y1" && r.direction == ForceDirection::plus_x && r.step > 1;
   });
-  const auto rep = check_displacements(t);
+  const auto rep = check_displacements(t, with_angles);
   EXPECT_EQ(rep.linearity.size(), full - 5);  // its five quantities are not checked
   for (const auto& l : rep.linearity) EXPECT_GE(l.fit.n, 3) << l.point;
   int said = 0;

@@ -89,13 +89,23 @@ TEST(DisplacementTableFormat, AbsentQuantitiesAreZeroForVirtualCampaignsWhileGap
 TEST(DataCheckOptions, AnAsymmetricRobotSkipsTheSymmetryCheck) {
   const auto table = load_displacement_table(thesis_dataset()).filter("OC");
   DataCheckOptions options;
+  options.ul_m = 0.160;  // the presets' replica
   EXPECT_FALSE(check_displacements(table, options).symmetry.empty());
   options.mirror_symmetric = false;
   const auto report = check_displacements(table, options);
   EXPECT_TRUE(report.symmetry.empty());
-  EXPECT_NE(std::find(report.skipped.begin(), report.skipped.end(),
+  // Not "could not run": it does not apply to this robot, and says so.
+  EXPECT_NE(std::find(report.not_applicable.begin(), report.not_applicable.end(),
+                      "symmetry: the robot is not its own mirror image about y = 0"),
+            report.not_applicable.end());
+  EXPECT_EQ(std::find(report.skipped.begin(), report.skipped.end(),
                       "symmetry: the robot is not its own mirror image about y = 0"),
             report.skipped.end());
+  // One mechanism's rows: the OC vs SC comparison does not apply either.
+  EXPECT_TRUE(report.comparison.empty());
+  EXPECT_NE(std::find(report.not_applicable.begin(), report.not_applicable.end(),
+                      "OC vs SC: the table holds the rows of one mechanism"),
+            report.not_applicable.end());
 }
 
 }  // namespace

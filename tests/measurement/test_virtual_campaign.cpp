@@ -12,6 +12,14 @@
 namespace stiffpath::measurement {
 namespace {
 
+// Processing with the presets' replica (fig. 2.4), as the campaigns were simulated.
+ProcessOptions replica() {
+  ProcessOptions o;
+  o.mechanism = "OC";
+  o.geometry = {0.069, 0.160};
+  return o;
+}
+
 DisplacementTable oc_truth() { return linear_truth(load_displacement_table(measurement::thesis_dataset()).filter("OC")); }
 
 struct Stats {
@@ -50,13 +58,15 @@ TEST(LinearTruth, IsCompleteAndProportionalToForce) {
 TEST(VirtualCampaign, NoiseFreeRoundTripIsExact) {
   const auto truth = oc_truth();
   VirtualCampaignOptions o;
+  o.geometry = {0.069, 0.160};  // the presets' replica
+  o.step0_kgf = step0_load_kgf(truth);  // the truth's own reference load
   o.noise_sigma_m = 0.0;
   o.g_height_m = 0.25;
   o.initial_tilt = {0.02, -0.015};  // a platform that is not level at step 0
   o.readings_per_step = 2;
   const Campaign c = simulate_campaign(truth, o);
   EXPECT_EQ(c.readings.size(), 30U * 6U * 2U);  // 30 series × (step 0 + 5 steps) × 2 readings
-  const DisplacementTable back = process_campaign(c, {});
+  const DisplacementTable back = process_campaign(c, replica());
   ASSERT_EQ(back.rows.size(), truth.rows.size());
   for (std::size_t i = 0; i < back.rows.size(); ++i) {
     const auto& a = back.rows[i];
@@ -90,9 +100,11 @@ TEST(VirtualCampaign, NoisyRoundTripMatchesTheNoiseStatistics) {
       const auto truth = linear_truth(thesis.filter(mech));
       for (unsigned seed = 1; seed <= 4; ++seed) {
         VirtualCampaignOptions o;
+        o.geometry = {0.069, 0.160};
+        o.step0_kgf = step0_load_kgf(truth);
         o.readings_per_step = readings;
         o.seed = 100 * seed + static_cast<unsigned>(readings);
-        const DisplacementTable back = process_campaign(simulate_campaign(truth, o), {});
+        const DisplacementTable back = process_campaign(simulate_campaign(truth, o), replica());
         for (std::size_t i = 0; i < back.rows.size(); ++i) {
           const auto& a = back.rows[i];
           const auto& b = truth.rows[i];
@@ -121,6 +133,8 @@ TEST(VirtualCampaign, NoisyRoundTripMatchesTheNoiseStatistics) {
 TEST(VirtualCampaign, SameSeedSameReadingsAndFileRoundTrip) {
   const auto truth = oc_truth();
   VirtualCampaignOptions o;
+  o.geometry = {0.069, 0.160};  // the presets' replica
+  o.step0_kgf = step0_load_kgf(truth);  // the truth's own reference load
   o.seed = 7;
   const Campaign a = simulate_campaign(truth, o), b = simulate_campaign(truth, o);
   ASSERT_EQ(a.readings.size(), b.readings.size());
@@ -142,16 +156,18 @@ TEST(VirtualCampaign, SameSeedSameReadingsAndFileRoundTrip) {
 TEST(VirtualCampaign, RejectsIncompleteTruthAndBadOptions) {
   const auto thesis = load_displacement_table(measurement::thesis_dataset()).filter("OC");
   try {
-    simulate_campaign(thesis, {});
+    simulate_campaign(thesis, VirtualCampaignOptions{.geometry = {0.069, 0.160}});
     FAIL() << "expected an error";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("builtin:thesis/displacements.csv:3: "), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("column 'dx_mm'"), std::string::npos) << e.what();
   }
   VirtualCampaignOptions o;
+  o.geometry = {0.069, 0.160};  // the presets' replica
   o.readings_per_step = 0;
   EXPECT_THROW(simulate_campaign(oc_truth(), o), Error);
-  EXPECT_THROW(simulate_campaign(linear_truth(load_displacement_table(measurement::thesis_dataset())), {}), Error);  // two mechanisms
+  o.readings_per_step = 1;
+  EXPECT_THROW(simulate_campaign(linear_truth(load_displacement_table(measurement::thesis_dataset())), o), Error);  // two mechanisms
 }
 
 }  // namespace

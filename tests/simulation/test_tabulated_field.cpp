@@ -22,7 +22,7 @@ using compliance::Vec2;
 class BilinearField final : public compliance::Model {
  public:
   BilinearField() { set_outside_policy(compliance::OutsidePolicy::extrapolate); }
-  [[nodiscard]] std::string method() const override { return "test-bilinear"; }
+  [[nodiscard]] std::string description() const override { return "test-bilinear"; }
   [[nodiscard]] Mat2 compliance(const Vec2& p) const noexcept override {
     Mat2 a, b, d, e;
     a << 2e-6, 0.3e-6, 0.3e-6, 1.5e-6;
@@ -32,7 +32,6 @@ class BilinearField final : public compliance::Model {
     return a + p.x() * b + p.y() * d + p.x() * p.y() * e;
   }
   [[nodiscard]] GridBounds bounds() const noexcept override { return {0.18, 0.26, -0.08, 0.08}; }
-  [[nodiscard]] nlohmann::json parameters() const override { return nlohmann::json::object(); }
 };
 
 double relative_error(const Mat2& got, const Mat2& want) { return (got - want).norm() / want.norm(); }
@@ -54,7 +53,7 @@ TEST(TabulatedField, ReproducesABilinearFieldAndLeavesPointsOutsideItsRegionToTh
   for (const Vec2& p : {Vec2(0.3, 0.0), Vec2(0.2, -0.2), Vec2(0.149, 0.0)}) {
     EXPECT_EQ(table.compliance(p), base->compliance(p)) << p.transpose();
   }
-  EXPECT_EQ(table.method(), "test-bilinear");
+  EXPECT_EQ(table.description(), "test-bilinear");
   EXPECT_EQ(table.bounds().x_max, base->bounds().x_max);
 }
 
@@ -89,7 +88,7 @@ TEST(TabulatedField, AgreesWithTheStructuralFieldItSamples) {
       }
     }
     std::printf("%s: %zu of ~%zu cells exact, worst relative error %.2e\n", name, lattice.exact_cells(), cells, worst);
-    EXPECT_EQ(table->parameters()["tabulated"]["spacing_mm"], 0.5);
+    EXPECT_EQ(dynamic_cast<const TabulatedModel&>(*table).parameters()["tabulated"]["spacing_mm"], 0.5);
   }
 }
 

@@ -12,6 +12,8 @@
 namespace stiffpath::simulation {
 namespace {
 
+constexpr double kG = 9.80665;  // standard gravity (m/s²): the runs are specified in g
+
 // At every grid point the bilinear model is the per-point fit (eq. 4.8) of noisy readings, so its slopes
 // differ from C_true by the noise's regression error only: |ΔC| ≲ 3·σ_slope, σ_slope = σ_d/√(Σ F²).
 TEST(Twin, CampaignFitRecoversTruthAtGridPoints) {
@@ -59,10 +61,10 @@ TEST(Twin, TheFavouredModelFollowsTheStructuralFieldBetweenThePoints) {
     const auto robot = kinematics::load_robot(build);
     const auto truth = make_true_compliance(robot);
     CampaignFitOptions fit;
-    fit.method = "auto";
+    fit.method = std::nullopt;
     const auto favoured = fit_compensation_model(*truth, robot, fit);
-    EXPECT_EQ(favoured->method(), "physical-spline") << build;
-    fit.method = "physical";
+    EXPECT_EQ(favoured->method(), compliance::FitMethod::physical_spline) << build;
+    fit.method = compliance::FitMethod::physical;
     const auto physical = fit_compensation_model(*truth, robot, fit);
     const compliance::GridBounds b = truth->bounds();
     double favoured_ss = 0.0, physical_ss = 0.0;
@@ -79,7 +81,7 @@ TEST(Twin, TheFavouredModelFollowsTheStructuralFieldBetweenThePoints) {
 
 TEST(Twin, TrueComplianceIsSymmetricPositiveDefiniteAndPerturbed) {
   const auto oc = kinematics::load_robot("oc-gu");
-  const auto base = make_true_compliance(oc, TrueComplianceOptions{"", 0.0, 1, "structural", nullptr});
+  const auto base = make_true_compliance(oc, TrueComplianceOptions{"", 0.0, 1, TrueFamily::structural, nullptr});
   const auto truth = make_true_compliance(oc);
   double max_rel = 0;
   for (double x = 0.172132; x <= 0.2722; x += 0.025) {
@@ -96,7 +98,7 @@ TEST(Twin, TrueComplianceIsSymmetricPositiveDefiniteAndPerturbed) {
   kinematics::Robot no_data = oc;
   no_data.compliance = {};
   EXPECT_THROW(make_true_compliance(no_data), Error);
-  EXPECT_THROW(make_true_compliance(oc, TrueComplianceOptions{"", 0.9, 1, "structural", nullptr}), Error);
+  EXPECT_THROW(make_true_compliance(oc, TrueComplianceOptions{"", 0.9, 1, TrueFamily::structural, nullptr}), Error);
 }
 
 // The y motion at 5 g on OC G_U. On the twin that shares the compensation's assumptions (C_true physical,
@@ -106,17 +108,17 @@ TEST(Twin, TrueComplianceIsSymmetricPositiveDefiniteAndPerturbed) {
 TEST(Twin, CompensationRemovesMostOfTheYMotionErrorAt5g) {
   const auto oc = kinematics::load_robot("oc-gu");
   ExperimentOptions matched;
-  matched.truth.family = "physical";
+  matched.truth.family = TrueFamily::physical;
   matched.simulation.plant.servo_feels_load = false;
   matched.cg_lever = false;
   const TwinModels old_models = make_twin_models(oc, matched);
-  const RunMetrics old_off = run_once({"oc-gu", "y", 5.0, false}, oc, old_models, matched).metrics;
-  const RunMetrics old_on = run_once({"oc-gu", "y", 5.0, true}, oc, old_models, matched).metrics;
+  const RunMetrics old_off = run_once({"oc-gu", "y", 5.0 * kG, CompensationVariant::without}, oc, old_models, matched).metrics;
+  const RunMetrics old_on = run_once({"oc-gu", "y", 5.0 * kG, CompensationVariant::thesis}, oc, old_models, matched).metrics;
   EXPECT_LT(std::abs(old_on.length_error_m), 0.10 * std::abs(old_off.length_error_m));
   EXPECT_LT(old_on.max_deviation_m, 0.20 * old_off.max_deviation_m);
   const TwinModels models = make_twin_models(oc);
-  const RunResult off = run_once({"oc-gu", "y", 5.0, false}, oc, models);
-  const RunResult on = run_once({"oc-gu", "y", 5.0, true}, oc, models);
+  const RunResult off = run_once({"oc-gu", "y", 5.0 * kG, CompensationVariant::without}, oc, models);
+  const RunResult on = run_once({"oc-gu", "y", 5.0 * kG, CompensationVariant::thesis}, oc, models);
   const auto& a = off.metrics;
   const auto& b = on.metrics;
   EXPECT_NEAR(a.commanded_length_m, 0.150, 1e-6);
@@ -137,11 +139,11 @@ TEST(Twin, CompensationRemovesMostOfTheYMotionErrorAt5g) {
 TEST(Twin, UncompensatedErrorGrowsWithAccelerationAndScIsWorse) {
   const auto oc_robot = kinematics::load_robot("oc-gu"), sc_robot = kinematics::load_robot("sc-gu");
   const TwinModels oc = make_twin_models(oc_robot), sc = make_twin_models(sc_robot);
-  const double e1 = run_once({"oc-gu", "y", 1.0, false}, oc_robot, oc).metrics.length_error_m;
-  const RunResult oc3 = run_once({"oc-gu", "y", 3.0, false}, oc_robot, oc);
+  const double e1 = run_once({"oc-gu", "y", 1.0 * kG, CompensationVariant::without}, oc_robot, oc).metrics.length_error_m;
+  const RunResult oc3 = run_once({"oc-gu", "y", 3.0 * kG, CompensationVariant::without}, oc_robot, oc);
   const double e3 = oc3.metrics.length_error_m;
-  const RunResult oc5 = run_once({"oc-gu", "y", 5.0, false}, oc_robot, oc);
-  const RunResult sc5 = run_once({"sc-gu", "y", 5.0, false}, sc_robot, sc);
+  const RunResult oc5 = run_once({"oc-gu", "y", 5.0 * kG, CompensationVariant::without}, oc_robot, oc);
+  const RunResult sc5 = run_once({"sc-gu", "y", 5.0 * kG, CompensationVariant::without}, sc_robot, sc);
   EXPECT_LT(e1, e3);
   EXPECT_LT(e1, oc5.metrics.length_error_m);
   EXPECT_LT(oc3.metrics.peak_deflection_m, oc5.metrics.peak_deflection_m);
@@ -155,8 +157,8 @@ TEST(Twin, TriangleCornerOvershootIsReducedByCompensation) {
   for (const char* build : {"oc-gu", "sc-gu"}) {
     const auto robot = kinematics::load_robot(build);
     const TwinModels models = make_twin_models(robot);
-    const RunMetrics off = run_once({build, "triangle", 5.0, false}, robot, models).metrics;
-    const RunMetrics on = run_once({build, "triangle", 5.0, true}, robot, models).metrics;
+    const RunMetrics off = run_once({build, "triangle", 5.0 * kG, CompensationVariant::without}, robot, models).metrics;
+    const RunMetrics on = run_once({build, "triangle", 5.0 * kG, CompensationVariant::thesis}, robot, models).metrics;
     ASSERT_EQ(off.corners, 2U) << build;
     ASSERT_EQ(on.corners, 2U) << build;
     EXPECT_GT(off.cornering_overshoot_m, 50e-6) << build;
@@ -178,8 +180,8 @@ TEST(Twin, DefaultVariantIsDynamicAndSmoothedAndBeatsTheThesisOffTheGrid) {
   options.motions = {"triangle-off", "y-mid-2"};
   const TwinModels models = make_twin_models(robot, options);
   for (const auto& [motion, corners] : {std::pair{"triangle-off", 2}, std::pair{"y-mid-2", 0}}) {
-    const RunResult thesis = run_once({"oc-gu", motion, 5.0, true, "thesis"}, robot, models, options);
-    const RunResult dflt = run_once({"oc-gu", motion, 5.0, true, "default"}, robot, models, options);
+    const RunResult thesis = run_once({"oc-gu", motion, 5.0 * kG, CompensationVariant::thesis}, robot, models, options);
+    const RunResult dflt = run_once({"oc-gu", motion, 5.0 * kG, CompensationVariant::default_run}, robot, models, options);
     EXPECT_LT(dflt.metrics.path_accuracy_m, 0.8 * thesis.metrics.path_accuracy_m) << motion;
     EXPECT_LT(dflt.metrics.residual_vibration_m, thesis.metrics.residual_vibration_m) << motion;
     EXPECT_NEAR(dflt.duration_s - thesis.duration_s, 0.008 + corners * 0.0085, 0.0011) << motion;
@@ -205,7 +207,7 @@ TEST(Twin, TorqueFeedForwardFromTheCommandsForceHelpsTheLoadedServo) {
   from_command.simulation.plant.load_feedforward_from_command = true;
   ExperimentOptions oracle = model_side, oracle_from_command = from_command;
   oracle.oracle_model = oracle_from_command.oracle_model = true;
-  const RunSpec spec{"oc-gu", "triangle-off", 5.0, true, "default"};
+  const RunSpec spec{"oc-gu", "triangle-off", 5.0 * kG, CompensationVariant::default_run};
   const RunMetrics exact_rigid = run_once(spec, robot, models, oracle).metrics;
   const RunMetrics exact_fed = run_once(spec, robot, models, oracle_from_command).metrics;
   EXPECT_LT(exact_fed.cornering_overshoot_m, 0.5 * exact_rigid.cornering_overshoot_m);
@@ -218,7 +220,7 @@ TEST(Twin, TorqueFeedForwardFromTheCommandsForceHelpsTheLoadedServo) {
   EXPECT_LT(fed.path_accuracy_m, rigid.path_accuracy_m);
   // Without compensation the command is the plan: both feed-forwards are the same m·a (to the
   // difference of the Hermite reference's acceleration and the sampled force).
-  const RunSpec off{"oc-gu", "triangle-off", 5.0, false, "thesis"};
+  const RunSpec off{"oc-gu", "triangle-off", 5.0 * kG, CompensationVariant::without};
   const double a = run_once(off, robot, models, model_side).metrics.path_accuracy_m;
   const double b = run_once(off, robot, models, from_command).metrics.path_accuracy_m;
   EXPECT_NEAR(a, b, 0.01 * a);
@@ -261,8 +263,8 @@ TEST(Twin, GuAndGlGiveDifferentMarksAndGlIsBetterWithoutCompensation) {
   const auto gu = kinematics::load_robot("oc-gu"), gl = kinematics::load_robot("oc-gl");
   const TwinModels models = make_twin_models(gu);
   for (const char* motion : {"y", "triangle"}) {
-    const RunMetrics u = run_once({"oc-gu", motion, 5.0, false}, gu, models).metrics;
-    const RunMetrics l = run_once({"oc-gl", motion, 5.0, false}, gl, models).metrics;
+    const RunMetrics u = run_once({"oc-gu", motion, 5.0 * kG, CompensationVariant::without}, gu, models).metrics;
+    const RunMetrics l = run_once({"oc-gl", motion, 5.0 * kG, CompensationVariant::without}, gl, models).metrics;
     EXPECT_GT(std::abs(u.deviation_area_m2 - l.deviation_area_m2), 0.02 * l.deviation_area_m2) << motion;
     EXPECT_GT(u.peak_deflection_m, l.peak_deflection_m) << motion;
     EXPECT_GT(u.deviation_area_m2, l.deviation_area_m2) << motion;

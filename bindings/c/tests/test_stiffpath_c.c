@@ -131,9 +131,17 @@ static void test_robot(void) {
   stiffpath_robot_free(NULL);
 }
 
+/* The thesis's quasi-static step (Δ = C·F, command p − k·Δ), which the step tests below check against closed forms. */
+static stiffpath_options quasi_static(void) {
+  stiffpath_options o = stiffpath_default_options();
+  o.method = STIFFPATH_METHOD_QUASI_STATIC;
+  return o;
+}
+
 static void test_step(void) {
   char error[256];
-  stiffpath_compensator *c = stiffpath_compensator_create("oc-gu", NULL, NULL, error, sizeof error);
+  const stiffpath_options qs = quasi_static();
+  stiffpath_compensator *c = stiffpath_compensator_create("oc-gu", NULL, &qs, error, sizeof error);
   CHECK(c != NULL);
   if (!c) {
     fprintf(stderr, "create failed: %s\n", error);
@@ -251,6 +259,8 @@ static void test_options(void) {
   char error[256];
   stiffpath_options o = stiffpath_default_options();
   CHECK(o.gain == 1.0 && o.enabled == 1 && o.check_limits == 1 && o.outside_policy == STIFFPATH_OUTSIDE_MODEL_DEFAULT);
+  CHECK(o.method == STIFFPATH_METHOD_DYNAMIC); /* as every surface's default */
+  o = quasi_static();
 
   stiffpath_compensator *full = stiffpath_compensator_create("oc-gu", "thesis-oc", &o, error, sizeof error);
   o.gain = 0.5;
@@ -296,13 +306,14 @@ static void test_options(void) {
  * step's Δ (Δ does not depend on the gain): the same joint angles as a compensator created with gain k. */
 static void test_gain_from_the_full_step(void) {
   char error[256];
-  stiffpath_compensator *full = stiffpath_compensator_create("oc-gu", NULL, NULL, error, sizeof error);
+  const stiffpath_options qs = quasi_static();
+  stiffpath_compensator *full = stiffpath_compensator_create("oc-gu", NULL, &qs, error, sizeof error);
   CHECK(full != NULL);
   if (!full) return;
   const stiffpath_robot *robot = stiffpath_compensator_robot(full);
   double worst_rad = 0.0, largest_rad = 0.0;
   for (int g = 1; g <= 3; ++g) {
-    stiffpath_options o = stiffpath_default_options();
+    stiffpath_options o = quasi_static();
     o.gain = 0.25 * g;
     stiffpath_compensator *part = stiffpath_compensator_create("oc-gu", NULL, &o, error, sizeof error);
     CHECK(part != NULL);

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "stiffpath/compensation/samples.hpp"
+#include "stiffpath/core/enum_names.hpp"
 #include "stiffpath/compliance/model.hpp"
 #include "stiffpath/kinematics/robot.hpp"
 
@@ -25,17 +26,13 @@ enum class Method : std::uint8_t {
   dynamic,
 };
 
-//! "quasi-static" or "dynamic".
-const char* to_string(Method method) noexcept;
-//! Parses "quasi-static" or "dynamic"; throws stiffpath::Error naming the value otherwise.
-Method parse_method(const std::string& text);
 
 //! Settings of the compensation (documented defaults).
 struct CompensatorOptions {
   double gain = 1.0;          //!< k in p_cmd = p − k·Δ; 0 turns compensation off (thesis §4.7 suggests < 1 may suit some builds)
   bool enabled = true;        //!< false: p_cmd = p (the "without compensation" runs)
   bool check_limits = true;   //!< check reach and joint limits on every sample
-  Method method = Method::quasi_static;  //!< the thesis's method unless asked (`stiffpath run` asks for dynamic)
+  Method method = Method::dynamic;  //!< as every surface's default (job::JobSpec); the thesis's: quasi_static
   //! ζ of the tip's modes assumed by Method::dynamic, finite, 0…2. Unset: the robot's tip_damping_ratio
   //! (its robot file's, 0.05 when the file gives none: bolted, bearing-jointed metal structures show
   //! 1–5 %, the thesis's marks, fig. 4.12, die out within a few periods). options() holds the value used.
@@ -103,3 +100,11 @@ class Compensator {
 };
 
 }  // namespace stiffpath::compensation
+
+//! Names at the edges: "quasi-static", "dynamic".
+template <>
+struct stiffpath::core::EnumNames<stiffpath::compensation::Method> {
+  static constexpr std::string_view what = "compensation method";
+  static constexpr std::array<std::pair<compensation::Method, std::string_view>, 2> names{
+      {{compensation::Method::dynamic, "dynamic"}, {compensation::Method::quasi_static, "quasi-static"}}};
+};

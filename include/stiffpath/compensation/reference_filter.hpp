@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "stiffpath/compensation/samples.hpp"
+#include "stiffpath/core/enum_names.hpp"
 
 namespace stiffpath::compensation {
 
@@ -20,10 +21,6 @@ enum class FilterKind : std::uint8_t {
   zvd,     //!< ZVD input shaper: impulses 1, 2K, K² over (1+K)² at 0, half and one damped period
 };
 
-//! "none", "smooth", "zv", "zvd".
-const char* to_string(FilterKind kind) noexcept;
-//! Parses the names above; throws stiffpath::Error naming the value otherwise.
-FilterKind parse_filter_kind(const std::string& text);
 
 //! Settings of a ReferenceFilter. Documented defaults.
 struct ReferenceFilterOptions {
@@ -163,3 +160,14 @@ inline constexpr double kDefaultSmoothing_s = 0.008;
 std::vector<ReferenceFilter> smoothing_filters(double rate_hz, double width_s);
 
 }  // namespace stiffpath::compensation
+
+//! Names at the edges: "none", "smooth", "zv", "zvd".
+template <>
+struct stiffpath::core::EnumNames<stiffpath::compensation::FilterKind> {
+  static constexpr std::string_view what = "reference filter";
+  static constexpr std::array<std::pair<compensation::FilterKind, std::string_view>, 4> names{
+      {{compensation::FilterKind::none, "none"},
+       {compensation::FilterKind::smooth, "smooth"},
+       {compensation::FilterKind::zv, "zv"},
+       {compensation::FilterKind::zvd, "zvd"}}};
+};

@@ -34,7 +34,7 @@ struct CvPoint {
 };
 
 struct CvMethod {
-  std::string method;              //!< "bilinear", "symmetric", "physical-0", "physical", "physical-2"
+  FitMethod method = FitMethod::bilinear;
   std::string description;
   std::vector<CvPoint> points;
   int predicted = 0;
@@ -50,7 +50,7 @@ struct CvMethod {
 
 //! A method that could not run on these points, and why.
 struct CvSkipped {
-  std::string method;
+  FitMethod method = FitMethod::bilinear;
   std::string reason;
 };
 
@@ -86,11 +86,11 @@ struct LooCompliance {
 //! "physical-2", "physical-spline"): physical models refitted without the point, grid methods by neighbour
 //! interpolation as cross_validate() does (the points must form a full grid). Throws stiffpath::Error when the
 //! method cannot run on these points or is unknown.
-std::vector<LooCompliance> leave_one_out_compliance(const std::string& method, const std::vector<PointSamples>& points,
+std::vector<LooCompliance> leave_one_out_compliance(FitMethod method, const std::vector<PointSamples>& points,
                                                     const kinematics::FiveBarGeometry& geometry, const std::string& source);
 
 //! The method with the smallest mean error over the points every method in the report predicted
 //! (ties: the first listed), and that mean for each method (µm) in `scores`.
-std::string favoured_method(const CvReport& report, std::vector<std::pair<std::string, double>>* scores = nullptr);
+FitMethod favoured_method(const CvReport& report, std::vector<std::pair<FitMethod, double>>* scores = nullptr);
 
 }  // namespace stiffpath::compliance

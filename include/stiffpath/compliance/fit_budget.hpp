@@ -2,10 +2,12 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "stiffpath/compliance/point_fit.hpp"
+#include "stiffpath/kinematics/robot.hpp"
 
 namespace stiffpath::compliance {
 
@@ -20,8 +22,8 @@ inline constexpr std::size_t max_cv_points = 400;
 inline constexpr std::size_t max_cv_samples = 20'000;
 
 //! Refuses (stiffpath::Error at `source`, "LIMIT: …" naming the limit and how to stay within it) a fit
-//! by `method` ("auto" or "": with cross-validation) beyond the budgets above.
-void check_fit_budget(const std::vector<PointSamples>& points, const std::string& method, const std::string& source);
+//! by `method` (none: chosen by cross-validation) beyond the budgets above.
+void check_fit_budget(const std::vector<PointSamples>& points, std::optional<kinematics::FitMethod> method, const std::string& source);
 //! The same for a cross-validation alone.
 void check_cv_budget(const std::vector<PointSamples>& points, const std::string& source);
 

@@ -27,15 +27,17 @@ struct GridNode {
 class GridModel final : public Model {
  public:
   //! `nodes` ordered by Grid::node(i, j); throws stiffpath::Error on a size mismatch.
-  GridModel(std::string method, Grid grid, std::vector<GridNode> nodes);
+  GridModel(FitMethod method, Grid grid, std::vector<GridNode> nodes);
 
-  [[nodiscard]] std::string method() const override { return method_; }
+  [[nodiscard]] std::optional<FitMethod> method() const noexcept override { return method_; }
+  [[nodiscard]] std::string description() const override { return std::string(core::enum_name(method_)); }
   [[nodiscard]] Mat2 compliance(const Vec2& p) const noexcept override;
   //! The cell is located and weighted per point without any virtual call (the compensator's path).
   void compliance_batch(std::span<const Vec2> points, std::span<Mat2> out) const noexcept override;
   [[nodiscard]] Vec2 offset(const Vec2& p) const noexcept override;
   [[nodiscard]] GridBounds bounds() const noexcept override { return bounds_; }
-  [[nodiscard]] nlohmann::json parameters() const override;
+  //! Its parameters and fit statistics as JSON, as model files hold them (compliance::model_parameters).
+  [[nodiscard]] nlohmann::json parameters() const;
 
   [[nodiscard]] const Grid& grid() const noexcept { return grid_; }
   [[nodiscard]] const std::vector<GridNode>& nodes() const noexcept { return nodes_; }
@@ -45,7 +47,7 @@ class GridModel final : public Model {
   template <typename T>
   [[nodiscard]] T interpolate(const Vec2& p, const std::vector<T>& values) const noexcept;
 
-  std::string method_;
+  FitMethod method_;
   Grid grid_;
   GridBounds bounds_;
   std::vector<GridNode> nodes_;
@@ -58,7 +60,7 @@ class GridModel final : public Model {
 
 //! Places one node per point on the grid that `positions` form (Grid::from_positions checks it is
 //! full); `make_node(k)` builds the node of point k.
-std::unique_ptr<GridModel> build_grid_model(std::string method, const std::vector<Vec2>& positions,
+std::unique_ptr<GridModel> build_grid_model(FitMethod method, const std::vector<Vec2>& positions,
                                             const std::function<GridNode(std::size_t)>& make_node,
                                             const std::string& source);
 

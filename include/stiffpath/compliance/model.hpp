@@ -3,14 +3,16 @@
 
 #include <algorithm>
 #include <memory>
-#include <nlohmann/json_fwd.hpp>
+#include <optional>
 #include <span>
 #include <string>
 
-#include "stiffpath/kinematics/types.hpp"
+#include "stiffpath/core/enum_names.hpp"
+#include "stiffpath/kinematics/robot.hpp"
 
 namespace stiffpath::compliance {
 
+using kinematics::FitMethod;
 using kinematics::Mat2;
 using kinematics::Vec2;
 
@@ -32,10 +34,6 @@ enum class ZeroForce {
   thesis_raw,  //!< eqs. 4.7–4.8 as written, intercepts included
 };
 
-const char* to_string(OutsidePolicy policy) noexcept;
-const char* to_string(ZeroForce mode) noexcept;
-OutsidePolicy parse_outside_policy(const std::string& text);  //!< throws stiffpath::Error
-ZeroForce parse_zero_force(const std::string& text);          //!< throws stiffpath::Error
 
 //! The measured rectangle of a model, in m.
 struct GridBounds {
@@ -65,8 +63,11 @@ class Model {
  public:
   virtual ~Model() = default;
 
-  //! Short method name ("bilinear", "symmetric", "physical", …).
-  [[nodiscard]] virtual std::string method() const = 0;
+  //! The method that fitted this model to a displacement table; unset for a model that was not fitted
+  //! by one of them (the digital twin's structural truth, a test's field).
+  [[nodiscard]] virtual std::optional<FitMethod> method() const noexcept { return std::nullopt; }
+  //! What the model is, for messages and figure titles ("physical-spline", "perturbed structural network").
+  [[nodiscard]] virtual std::string description() const = 0;
   //! Compliance matrix ∂Δ/∂F at p (m/N), with the outside policy applied (error acts as clamp).
   [[nodiscard]] virtual Mat2 compliance(const Vec2& p) const noexcept = 0;
   //! compliance() at several points in one call (the compensator asks for p and its two neighbours
@@ -77,8 +78,6 @@ class Model {
   [[nodiscard]] virtual Vec2 offset(const Vec2& p) const noexcept;
   //! The rectangle where the model was measured.
   [[nodiscard]] virtual GridBounds bounds() const noexcept = 0;
-  //! The model's parameters and fit statistics as JSON (for model files); see model_file.hpp.
-  [[nodiscard]] virtual nlohmann::json parameters() const = 0;
 
   //! Predicted deflection Δ (m) at p (m) under F (N), eqs. 4.6–4.7.
   [[nodiscard]] Vec2 predict(const Vec2& p, const Vec2& F) const noexcept {
@@ -109,3 +108,21 @@ class Model {
 };
 
 }  // namespace stiffpath::compliance
+
+//! Names at the edges: "error", "clamp", "extrapolate".
+template <>
+struct stiffpath::core::EnumNames<stiffpath::compliance::OutsidePolicy> {
+  static constexpr std::string_view what = "outside-region policy";
+  static constexpr std::array<std::pair<compliance::OutsidePolicy, std::string_view>, 3> names{
+      {{compliance::OutsidePolicy::error, "error"},
+       {compliance::OutsidePolicy::clamp, "clamp"},
+       {compliance::OutsidePolicy::extrapolate, "extrapolate"}}};
+};
+
+//! Names at the edges: "relative", "thesis-raw".
+template <>
+struct stiffpath::core::EnumNames<stiffpath::compliance::ZeroForce> {
+  static constexpr std::string_view what = "zero-force mode";
+  static constexpr std::array<std::pair<compliance::ZeroForce, std::string_view>, 2> names{
+      {{compliance::ZeroForce::relative, "relative"}, {compliance::ZeroForce::thesis_raw, "thesis-raw"}}};
+};

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <memory>
+#include <cstdint>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -15,6 +16,12 @@
 
 namespace stiffpath::compliance {
 
+//! How a model's method was chosen.
+enum class MethodSelection : std::uint8_t {
+  named,             //!< named by the caller or the robot file
+  cross_validation,  //!< the method leave-one-out cross-validation favours (compliance::favoured_method)
+};
+
 //! Where a model came from and which robot it belongs to, recorded in model files.
 struct Provenance {
   std::string source;      //!< the data table ("builtin:thesis/displacements.csv" or a path)
@@ -24,8 +31,8 @@ struct Provenance {
   std::string robot;       //!< name of the robot it was fitted for
   //! The robot's geometry; nullopt for files of format version 1, which did not record it.
   std::optional<kinematics::FiveBarGeometry> geometry;
-  //! How the method was chosen: "named" or "cross-validation" (with the scores in `selection`).
-  std::string selected_by = "named";
+  //! How the method was chosen (by name, or by cross-validation with the scores in `selection`).
+  MethodSelection selected_by = MethodSelection::named;
   nlohmann::json selection;  //!< per method: mean leave-one-out error on the points all methods predict
   //! The uncertainty of the model's predictions (add_uncertainty(); model files record it); empty when unknown.
   std::optional<PredictionUncertainty> uncertainty;
@@ -38,18 +45,16 @@ struct LoadedModel {
   std::string label;  //!< "thesis-oc", a file's path, or "physical fitted to <table>"
 };
 
-//! Method names accepted by fit_model: bilinear (the thesis's), symmetric, physical (order 1),
-//! physical-0, physical-2; "auto" (or "") picks the one cross-validation favours.
-std::vector<std::string> method_names();
-
 //! Fits `method` to the rows `rows` of `table` (every row when empty) for `robot`, whose geometry the
-//! physical models use and the provenance records. `auto`/empty: cross-validates every method that
-//! can run on these points (compliance::cross_validate) and takes the one with the smallest mean
-//! error over the points all of them predict (ties: the first in method_names() order). Throws
-//! stiffpath::Error for an unknown method or rows (naming the ones available) and for data the
-//! method cannot use (a grid method on an incomplete grid).
-LoadedModel fit_model(const measurement::DisplacementTable& table, const std::string& rows, const std::string& method,
-                      ForceConvention convention, const kinematics::Robot& robot);
+//! physical models use and the provenance records. Unset: cross-validates every method that can run on
+//! these points (compliance::cross_validate) and takes the one with the smallest mean error over the
+//! points all of them predict. Throws stiffpath::Error for unknown rows (naming the ones available) and
+//! for data the method cannot use (a grid method on an incomplete grid).
+LoadedModel fit_model(const measurement::DisplacementTable& table, const std::string& rows,
+                      std::optional<FitMethod> method, ForceConvention convention, const kinematics::Robot& robot);
+//! A method named at an edge: "auto" (unset: cross-validation chooses) or one of FitMethod's names;
+//! throws stiffpath::Error listing them.
+std::optional<FitMethod> parse_fit_method(std::string_view text);
 
 //! Learns the model's prediction uncertainty (estimate_method_uncertainty) from the table it was fitted to (its
 //! provenance: source, rows, force convention) unless it has one. Throws stiffpath::Error when the table cannot be
@@ -66,8 +71,12 @@ bool is_builtin_model(const std::string& name);
 //! What a command asks for besides the robot.
 struct ModelRequest {
   std::string model;   //!< a model file or built-in name; empty: the robot's own
-  std::string method;  //!< fit the robot's table with this method instead of using its model
+  //! Fit the robot's table instead of using its model file: with this method (when set), or, with
+  //! `refit` and no method, the one cross-validation favours.
+  std::optional<FitMethod> method;
+  bool refit = false;
   bool force = false;  //!< accept a model fitted for another geometry
+  std::string how_to_force = "pass --force-model";  //!< how the caller's surface says `force`, for the refusal
   ForceConvention convention = ForceConvention::measured;
 };
 
@@ -78,8 +87,10 @@ struct ModelRequest {
 LoadedModel load_robot_model(const kinematics::Robot& robot, const ModelRequest& request = {});
 
 //! Refuses (stiffpath::Error, naming both) a model fitted for another geometry than the robot's, or
-//! one that does not record its geometry, unless `force`.
-void check_model_geometry(const LoadedModel& model, const kinematics::Robot& robot, bool force);
+//! one that does not record its geometry, unless `force`; the message names how the caller's surface forces it
+//! (`how_to_force`: the CLI's "pass --force-model", Python's "pass force_model=True", …).
+void check_model_geometry(const LoadedModel& model, const kinematics::Robot& robot, bool force,
+                          std::string_view how_to_force = "pass --force-model");
 
 //! The robot's displacement table restricted to its rows; throws when it has none.
 measurement::DisplacementTable robot_table(const kinematics::Robot& robot);
@@ -88,3 +99,11 @@ measurement::DisplacementTable robot_table(const kinematics::Robot& robot);
 GridBounds table_region(const measurement::DisplacementTable& table);
 
 }  // namespace stiffpath::compliance
+
+//! Names in model files: "named", "cross-validation".
+template <>
+struct stiffpath::core::EnumNames<stiffpath::compliance::MethodSelection> {
+  static constexpr std::string_view what = "method selection";
+  static constexpr std::array<std::pair<compliance::MethodSelection, std::string_view>, 2> names{
+      {{compliance::MethodSelection::named, "named"}, {compliance::MethodSelection::cross_validation, "cross-validation"}}};
+};

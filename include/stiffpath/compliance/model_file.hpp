@@ -12,6 +12,11 @@ namespace stiffpath::compliance {
 inline constexpr const char* kModelFormat = "stiffpath-compliance-model";
 inline constexpr int kModelFormatVersion = 2;  //!< 2 records the robot and its geometry; 1 is still read
 
+//! A model's parameters and fit statistics as JSON, as model files hold them: a grid's nodes, a physical
+//! model's D(p), a spline's weights, a tool point's lever, a calibration's correction. A model no file can hold
+//! (the twin's structural truth) gives its description.
+nlohmann::json model_parameters(const Model& model);
+
 //! The model file document.
 nlohmann::json model_to_json(const Model& model, const Provenance& provenance);
 //! Writes the document atomically.

@@ -32,12 +32,16 @@ class PhysicalModel final : public Model {
   PhysicalModel(const kinematics::FiveBarGeometry& geometry, GridBounds bounds, int order,
                 std::vector<std::array<double, 3>> coefficients, nlohmann::json stats);
 
-  [[nodiscard]] std::string method() const override { return "physical"; }
+  [[nodiscard]] std::optional<FitMethod> method() const noexcept override {
+    return order_ == 0 ? FitMethod::physical_0 : order_ == 2 ? FitMethod::physical_2 : FitMethod::physical;
+  }
+  [[nodiscard]] std::string description() const override { return std::string(core::enum_name(*method())); }
   //! U⁻ᵀ D U⁻¹ at p. The outside policy applies to D's polynomial (clamp: D is held at its edge
   //! value); the geometric factor U always uses the true p, so growth toward singularity is kept.
   [[nodiscard]] Mat2 compliance(const Vec2& p) const noexcept override;
   [[nodiscard]] GridBounds bounds() const noexcept override { return bounds_; }
-  [[nodiscard]] nlohmann::json parameters() const override;
+  //! Its parameters and fit statistics as JSON, as model files hold them (compliance::model_parameters).
+  [[nodiscard]] nlohmann::json parameters() const;
 
   //! D(p) in m/N (for the positive-definiteness check and plots).
   [[nodiscard]] Mat2 link_compliance(const Vec2& p) const noexcept;

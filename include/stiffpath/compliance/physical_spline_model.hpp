@@ -52,10 +52,12 @@ class PhysicalSplineModel final : public Model {
   PhysicalSplineModel(std::unique_ptr<PhysicalModel> base, ResidualSpline residual, nlohmann::json stats,
                       bool tabulate = true);
 
-  [[nodiscard]] std::string method() const override { return "physical-spline"; }
+  [[nodiscard]] std::optional<FitMethod> method() const noexcept override { return FitMethod::physical_spline; }
+  [[nodiscard]] std::string description() const override { return "physical-spline"; }
   [[nodiscard]] Mat2 compliance(const Vec2& p) const noexcept override;
   [[nodiscard]] GridBounds bounds() const noexcept override { return base_->bounds(); }
-  [[nodiscard]] nlohmann::json parameters() const override;
+  //! Its parameters and fit statistics as JSON, as model files hold them (compliance::model_parameters).
+  [[nodiscard]] nlohmann::json parameters() const;
   void set_outside_policy(OutsidePolicy policy) noexcept override;
 
   //! C evaluated without the lattice.

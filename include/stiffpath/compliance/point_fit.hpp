@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "stiffpath/core/enum_names.hpp"
 #include "stiffpath/core/line_fit.hpp"
 #include "stiffpath/kinematics/types.hpp"
 #include "stiffpath/measurement/displacement_table.hpp"
@@ -18,11 +19,9 @@ using kinematics::Vec2;
 
 //! Which force column the fits use.
 enum class ForceConvention {
-  measured,  //!< F_N: table 2.1's kgf relative to step 0 (0.11 kgf), × 9.80665 (default)
-  nominal,   //!< F_nominal_N: the thesis's rounded 50 … 250 N
+  measured,  //!< F_N: the measured load relative to step 0 (default)
+  nominal,   //!< F_nominal_N: the round loads the table names (the table's own column)
 };
-const char* to_string(ForceConvention convention) noexcept;
-ForceConvention parse_force_convention(const std::string& text);  //!< "measured" | "nominal"
 
 //! The four fits of eq. 4.8 at one measurement point ij, forces signed as applied (+x table: Fx > 0;
 //! −y table: Fy < 0). Slopes in m/N, intercepts in m. Angular fits (rad/N) when the table has them.
@@ -69,3 +68,11 @@ std::vector<PointFit> fit_points(const measurement::DisplacementTable& table,
 PointFit fit_point(const PointSamples& point, const std::string& source);
 
 }  // namespace stiffpath::compliance
+
+//! Names at the edges: "measured", "nominal".
+template <>
+struct stiffpath::core::EnumNames<stiffpath::compliance::ForceConvention> {
+  static constexpr std::string_view what = "force convention";
+  static constexpr std::array<std::pair<compliance::ForceConvention, std::string_view>, 2> names{
+      {{compliance::ForceConvention::measured, "measured"}, {compliance::ForceConvention::nominal, "nominal"}}};
+};

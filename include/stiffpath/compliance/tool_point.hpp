@@ -1,6 +1,8 @@
 // Moving a prediction from G to the laser's tool point using the measured angular deflections.
 #pragma once
 
+#include <nlohmann/json_fwd.hpp>
+
 #include <memory>
 #include <vector>
 
@@ -20,11 +22,13 @@ class ToolPointModel final : public Model {
  public:
   ToolPointModel(std::shared_ptr<const Model> at_G, std::shared_ptr<const GridModel> angular, double distance_below_G_m);
 
-  [[nodiscard]] std::string method() const override { return at_G_->method() + "+tool-point"; }
+  [[nodiscard]] std::optional<FitMethod> method() const noexcept override { return at_G_->method(); }
+  [[nodiscard]] std::string description() const override { return at_G_->description() + " at the tool point"; }
   [[nodiscard]] Mat2 compliance(const Vec2& p) const noexcept override;
   [[nodiscard]] Vec2 offset(const Vec2& p) const noexcept override { return at_G_->offset(p); }
   [[nodiscard]] GridBounds bounds() const noexcept override { return at_G_->bounds(); }
-  [[nodiscard]] nlohmann::json parameters() const override;
+  //! Its parameters and fit statistics as JSON, as model files hold them (compliance::model_parameters).
+  [[nodiscard]] nlohmann::json parameters() const;
 
   //! The part added by the rotation: d·[−A21 −A22; A11 A12] (m/N).
   [[nodiscard]] Mat2 lever(const Vec2& p) const noexcept;

@@ -90,10 +90,10 @@ PredictionUncertainty estimate_uncertainty(const std::vector<PointSamples>& trai
                                            UncertaintyBasis basis, bool symmetric, const std::string& source);
 
 //! The method's basis: stationary for physical, physical-0, physical-2; interpolation otherwise.
-UncertaintyBasis uncertainty_basis(const std::string& method);
+UncertaintyBasis uncertainty_basis(FitMethod method);
 
 //! estimate_uncertainty() with the method's own leave-one-out predictions (compliance::leave_one_out_compliance).
-PredictionUncertainty estimate_method_uncertainty(const std::string& method, const std::vector<PointSamples>& points,
+PredictionUncertainty estimate_method_uncertainty(FitMethod method, const std::vector<PointSamples>& points,
                                                   const kinematics::FiveBarGeometry& geometry, const std::string& source);
 
 //! The z of a two-sided 95 % band of a normal error: 1.959964.

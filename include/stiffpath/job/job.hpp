@@ -3,20 +3,21 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "stiffpath/compensation/compensator.hpp"
 #include "stiffpath/compensation/reference_filter.hpp"
+#include "stiffpath/core/error.hpp"
 #include "stiffpath/job/joint_writer.hpp"
 #include "stiffpath/job/task_source.hpp"
 #include "stiffpath/motion/sampler.hpp"
+#include "stiffpath/motion/slowdown.hpp"
 
 namespace stiffpath::job {
 
 using compensation::JointCommand;
 using compensation::TaskSample;
-
-AccelerationSource parse_acceleration_source(const std::string& text);  //!< "analytic" | "numeric"
 
 //! What a finished job reports.
 struct JobSummary {
@@ -28,6 +29,7 @@ struct JobSummary {
   double peak_joint_velocity_rad_s = 0.0;
   double peak_joint_acceleration_rad_s2 = 0.0;
   std::uint64_t samples_outside_grid = 0;  //!< samples where the model clamped or extrapolated
+  std::optional<motion::SlowdownReport> slowdowns;  //!< the time lost to each limit, for a planned G-code program
 };
 
 //! Called every ~64k samples with the samples done and the current G-code line (for progress).
@@ -45,9 +47,20 @@ using Progress = std::function<void(std::uint64_t samples, int line)>;
 JobSummary run_job(motion::SampleSource& source, const compensation::Compensator& compensator, JointWriter* writer,
                    const std::string& job_label, double rate_hz,
                    AccelerationSource acceleration = AccelerationSource::analytic, const Progress& progress = {},
-                   compensation::FilterChain* filters = nullptr);
+                   compensation::FilterChain* filters = nullptr, LaserDelays laser = {});
 
-//! Throws the stiffpath::Error for a refused command `c` (status not ok): "<job>:<line>: t = … s:
+//! A sample the compensator refused: a stiffpath::Error located at its G-code line, with the step's status.
+class Refusal : public Error {
+ public:
+  Refusal(const SourceLocation& where, const std::string& message, compensation::Status status)
+      : Error(where, message), status_(status) {}
+  [[nodiscard]] compensation::Status status() const noexcept { return status_; }
+
+ private:
+  compensation::Status status_;
+};
+
+//! Throws the Refusal for a refused command `c` (status not ok): "<job>:<line>: t = … s:
 //! <quantity> <value> against <limit>", the message run_job gives, for other loops over step().
 [[noreturn]] void throw_refusal(const JointCommand& c, const compensation::Compensator& compensator, const std::string& job_label);
 

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "stiffpath/compensation/samples.hpp"
+#include "stiffpath/core/enum_names.hpp"
 
 namespace stiffpath::job {
 
@@ -13,8 +14,8 @@ using compensation::JointCommand;
 using compensation::TaskSample;
 using compensation::Vec2;
 
-enum class OutputFormat { csv, binary };
-OutputFormat parse_output_format(const std::string& text);  //!< "csv" | "bin"; throws stiffpath::Error
+//! How a joint trajectory is written (names at the edges: "csv", "bin").
+enum class OutputFormat : std::uint8_t { csv, binary };
 
 //! First line of a joint CSV, a comment recording how it was made, followed by
 //! " rate_hz=<Hz> geometry_sha256=<hex, or - when unknown> robot=<name to the end of the line>".
@@ -60,9 +61,21 @@ class JointWriter {
   virtual void finish() = 0;
 };
 
+//! Bytes of a joint file of `samples` samples in `format`: exact for the binary format (header and
+//! records), an upper estimate for CSV (140 bytes a row: the thesis's jobs measure 125-135, plus 200
+//! bytes of header), for refusing an output that cannot fit before it is written.
+double estimated_joint_file_bytes(OutputFormat format, std::uint64_t samples) noexcept;
+
 //! A writer for `path` in `format`; `rate_hz` and the robot go into the binary header or the CSV's
 //! first comment line.
 std::unique_ptr<JointWriter> make_joint_writer(OutputFormat format, const std::string& path, double rate_hz,
                                                const JointFileRobot& robot);
 
 }  // namespace stiffpath::job
+
+template <>
+struct stiffpath::core::EnumNames<stiffpath::job::OutputFormat> {
+  static constexpr std::string_view what = "joint file format";
+  static constexpr std::array<std::pair<job::OutputFormat, std::string_view>, 2> names{
+      {{job::OutputFormat::csv, "csv"}, {job::OutputFormat::binary, "bin"}}};
+};

@@ -5,6 +5,8 @@
 
 #include "stiffpath/compensation/numeric_acceleration.hpp"
 #include "stiffpath/compensation/reference_filter.hpp"
+#include "stiffpath/core/enum_names.hpp"
+#include "stiffpath/job/laser_timing.hpp"
 #include "stiffpath/motion/sampler.hpp"
 
 namespace stiffpath::job {
@@ -36,10 +38,11 @@ enum class AccelerationSource {
 //! The numerical acceleration, if asked for, is then that of the filtered positions. A source without segments
 //! (samples from elsewhere) gets the planned point itself filtered (its acceleration source first), which is
 //! exact on straight strokes but not at corners or on arcs.
+//! Last, the laser's switches are moved by its own delays (LaserTiming), on the filtered samples.
 class TaskSource {
  public:
   TaskSource(motion::SampleSource& source, double rate_hz, AccelerationSource acceleration,
-             compensation::FilterChain* filters = nullptr);
+             compensation::FilterChain* filters = nullptr, LaserDelays laser = {});
   ~TaskSource();
   TaskSource(const TaskSource&) = delete;
   TaskSource& operator=(const TaskSource&) = delete;
@@ -49,6 +52,7 @@ class TaskSource {
   [[nodiscard]] bool follows_path() const noexcept { return path_ != nullptr; }
 
  private:
+  bool next_timed(compensation::TaskSample& out);  // before the laser's delays
   bool next_planned(compensation::TaskSample& out);
   bool next_reference(compensation::TaskSample& out);  // planned → (numeric) → filters, or along the path
 
@@ -57,8 +61,17 @@ class TaskSource {
   compensation::FilterChain* filters_;
   compensation::NumericDifferentiator numeric_;
   std::unique_ptr<detail::PathTiming> path_;
+  LaserTiming laser_;
   bool source_done_ = false;   // numeric: the source is exhausted, the differentiator hands out its last samples
   bool planned_done_ = false;  // filters: the planned samples are exhausted, the filters hand out their tails
 };
 
 }  // namespace stiffpath::job
+
+//! Names at the edges: "analytic", "numeric".
+template <>
+struct stiffpath::core::EnumNames<stiffpath::job::AccelerationSource> {
+  static constexpr std::string_view what = "acceleration source";
+  static constexpr std::array<std::pair<job::AccelerationSource, std::string_view>, 2> names{
+      {{job::AccelerationSource::analytic, "analytic"}, {job::AccelerationSource::numeric, "numeric"}}};
+};

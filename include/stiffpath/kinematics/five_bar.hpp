@@ -14,8 +14,8 @@ namespace stiffpath::kinematics {
 //! (length l_di) to the end point C, where the two distal links meet in a pin joint.
 struct FiveBarGeometry {
   std::array<Vec2, 2> actuator_m{Vec2::Zero(), Vec2::Zero()};  //!< A_1 (left), A_2 (right), m
-  std::array<double, 2> proximal_m{0.150, 0.150};              //!< l_p1, l_p2, m
-  std::array<double, 2> distal_m{0.150, 0.150};                //!< l_d1, l_d2, m
+  std::array<double, 2> proximal_m{0.0, 0.0};  //!< l_p1, l_p2, m (every robot's own: no default length)
+  std::array<double, 2> distal_m{0.0, 0.0};    //!< l_d1, l_d2, m
   //! Working mode s_i: +1 puts elbow B_i counter-clockwise of the line from A_i to C, −1 clockwise.
   //! θ_i = φ_i + s_i·α_i with φ_i the direction of A_iC and α_i the angle between A_iC and A_iB_i.
   std::array<int, 2> elbows{+1, -1};
@@ -29,7 +29,7 @@ struct FiveBarGeometry {
 
   //! The thesis's robot (§2.2): both actuators at the origin, four links of `link_length_m`, elbows
   //! [+1, −1], assembly +1: C = l·(e^{iθ1} + e^{iθ2}) (eq. 2.1).
-  static FiveBarGeometry thesis(double link_length_m = 0.150) noexcept;
+  static FiveBarGeometry thesis(double link_length_m) noexcept;
   //! True when this is exactly the thesis's special case (bit-for-bit equal fields, zero offsets zero), for
   //! which the closed forms of eqs. 2.1–2.2 are used.
   [[nodiscard]] bool is_thesis_case() const noexcept;
@@ -65,7 +65,7 @@ struct InverseFrame {
 class FiveBar final : public Mechanism {
  public:
   //! The thesis's robot with links of `link_length_m` (> 0) and the margin.
-  explicit FiveBar(double link_length_m = 0.150, SingularityMargin margin = {});
+  explicit FiveBar(double link_length_m, SingularityMargin margin = {});
   //! Any five-bar; throws stiffpath::Error for non-positive or non-finite lengths, elbows or assembly
   //! other than ±1, or a margin that leaves no workspace. `angle_floor_rad`: the general inverse
   //! returns θ_i in [floor_i, floor_i + 2π) (set it to the joints' lower limits).

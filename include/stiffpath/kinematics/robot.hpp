@@ -3,12 +3,12 @@
 
 #include <array>
 #include <cmath>
-#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "stiffpath/core/data_ref.hpp"
+#include "stiffpath/core/enum_names.hpp"
 #include "stiffpath/kinematics/five_bar.hpp"
 
 namespace stiffpath::kinematics {
@@ -24,8 +24,19 @@ struct JointLimit {
 
 //! The CMM replica's lever lengths (thesis fig. 2.4), needed by eq. 2.3.
 struct ReplicaLevers {
-  double ug_m = 0.069;  //!< |UG|
-  double ul_m = 0.160;  //!< |UL| > |UG|
+  double ug_m = 0.0;  //!< |UG| (the robot file's measurement.UG_mm)
+  double ul_m = 0.0;  //!< |UL| > |UG| (measurement.UL_mm)
+};
+
+//! How a displacement table becomes a compliance model (docs/compliance.md). The robot file may name one;
+//! the compliance module implements them.
+enum class FitMethod : std::uint8_t {
+  bilinear,         //!< the thesis's: per-point fits (eqs. 4.8–4.11), bilinear between the points (eq. 4.12)
+  symmetric,        //!< per-point fits with C = Cᵀ ≻ 0 (reciprocity), bilinear between the points
+  physical,         //!< five-bar statics C = U⁻ᵀ·D(p)·U⁻¹ with D linear in p
+  physical_0,       //!< … D constant
+  physical_2,       //!< … D quadratic in p
+  physical_spline,  //!< physical plus a thin-plate spline of its residual at the points
 };
 
 //! Where the robot's compliance comes from. Paths are resolved against the robot file's folder.
@@ -35,9 +46,9 @@ struct ComplianceSource {
   //! several builds, as the thesis's holds OC and SC); empty: every row.
   std::string rows;
   core::DataRef model;  //!< a fitted model file; empty: fit one from the table
-  //! Method used to fit the table when no model file is named ("bilinear", "physical", …); empty:
-  //! the method the table's cross-validation favours.
-  std::string method;
+  //! Method used to fit the table when no model file is named; unset: the method the table's
+  //! cross-validation favours.
+  std::optional<FitMethod> method;
 };
 
 //! Everything stiffpath knows about one robot: a preset built into the binary (data/robots/*.json)
@@ -53,6 +64,14 @@ struct Robot {
   //! compensation's and the input shaper's ζ, and the digital twin's, unless a caller sets its own.
   //! 0.05 when the robot file gives none (a lightly damped welded or bolted frame).
   double tip_damping_ratio = 0.05;
+  //! The tip's natural frequency over the one its mass and compliance imply (1/√(m·λ(C)) · 1/2π): a calibration
+  //! plate identifies it when the platform rings faster or slower than its static deflection says. The dynamic
+  //! compensation's time constant T = 2ζ√(m·C) is divided by it. 1 when the robot file gives none.
+  double tip_frequency_scale = 1.0;
+  //! How long the laser takes to follow a switch, measured against the motion (a calibration plate identifies
+  //! them; positive: late), s. The job switches the laser this much earlier. 0 when the file gives none.
+  double laser_on_delay_s = 0.0;
+  double laser_off_delay_s = 0.0;
   std::string cg_label = "G";        //!< name of the CG position ("G_U", "G_L": fig. 4.5)
   double cg_height_m = 0.0;          //!< height of the CG above the measured point G
   std::optional<ReplicaLevers> replica;  //!< CMM replica, when the robot is measured that way
@@ -72,6 +91,9 @@ struct Robot {
   //! θ for p with every check: reach (singularities, assembly mode) and the joints' position limits.
   //! Throws stiffpath::Error "point (x = … mm, y = … mm) refused: <reason>".
   [[nodiscard]] Vec2 inverse(const Vec2& p) const;
+  //! The end point of joint angles q with every check: finite, each within its joint's range (an angle far
+  //! beyond ±2π is named as degrees given for radians), the loop closing. Throws stiffpath::Error naming the joint.
+  [[nodiscard]] Vec2 forward(const Vec2& q) const;
   //! Why p is refused (reach or a joint's range), empty when it is usable.
   [[nodiscard]] std::string refusal(const Vec2& p) const;
   //! Whether the joint angles lie within the position limits.
@@ -87,9 +109,6 @@ inline constexpr double kMaxJointZeroOffset_deg = 180.0;
 std::string geometry_text(const FiveBarGeometry& geometry);
 //! SHA-256 of geometry_text().
 std::string geometry_hash(const FiveBarGeometry& geometry);
-//! The geometry's fields as in robot files (left_actuator_mm … elbows, assembly, and joint_zero_offsets_deg
-//! when either offset is not zero).
-nlohmann::json geometry_to_json(const FiveBarGeometry& geometry);
 
 //! Names of the built-in presets (oc-gu, oc-gl, sc-gu, sc-gl).
 std::vector<std::string> preset_names();
@@ -97,8 +116,6 @@ std::vector<std::string> preset_names();
 Robot load_robot(const std::string& preset_or_path);
 //! Parses a robot file's text; `file` names it in errors and anchors its relative paths.
 Robot parse_robot(std::string_view text, const core::DataRef& file);
-//! The robot as JSON, in the file format (units in the key names; paths as resolved).
-nlohmann::json to_json(const Robot& robot);
 
 //! Which joint quantity was violated.
 enum class JointCheck { ok, position, velocity, acceleration };
@@ -119,3 +136,16 @@ inline JointCheck check_joint_limits(const std::array<JointLimit, 2>& limits, co
 }
 
 }  // namespace stiffpath::kinematics
+
+//! Names at the edges (robot and model files, --method): as the enum's comments list them.
+template <>
+struct stiffpath::core::EnumNames<stiffpath::kinematics::FitMethod> {
+  static constexpr std::string_view what = "compliance method";
+  static constexpr std::array<std::pair<kinematics::FitMethod, std::string_view>, 6> names{
+      {{kinematics::FitMethod::bilinear, "bilinear"},
+       {kinematics::FitMethod::symmetric, "symmetric"},
+       {kinematics::FitMethod::physical, "physical"},
+       {kinematics::FitMethod::physical_0, "physical-0"},
+       {kinematics::FitMethod::physical_2, "physical-2"},
+       {kinematics::FitMethod::physical_spline, "physical-spline"}}};
+};

@@ -2,6 +2,7 @@
 // measured points U and L of the laser-head replica (thesis §2.4). Raw format documented in docs/measurement.md.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,9 +17,12 @@ struct CampaignReading {
   double x_m = 0.0;        //!< nominal platform position
   double y_m = 0.0;
   ForceDirection direction = ForceDirection::plus_x;
-  int step = 0;            //!< load step; 0 is the reference (wire system only, 0.11 kgf in table 2.1)
+  int step = 0;            //!< load step; 0 is the reference (the hanging system alone)
   int reading = 1;         //!< repeat index within the step (1 when not repeated)
   double force_N = 0.0;    //!< absolute hanging load of this step, as recorded (kgf × 9.80665 or N)
+  //! The round load the campaign names for this step relative to step 0 (its force_nominal_N column, N);
+  //! unset when the file has no such column.
+  std::optional<double> nominal_force_N;
   Vec3 U = Vec3::Zero();   //!< upper measured point (m)
   Vec3 L = Vec3::Zero();   //!< lower measured point (m)
   int line = 0;            //!< source line, for errors
@@ -31,11 +35,13 @@ enum class ForceUnit { kgf, N };
 struct Campaign {
   std::string source;
   ForceUnit force_unit = ForceUnit::kgf;  //!< how the file gave the force (force_kgf or force_N)
+  bool has_nominal_forces = false;        //!< the file has a force_nominal_N column
   std::vector<CampaignReading> readings;
 };
 
-//! Columns of the raw format: point,x_mm,y_mm,direction,step,[reading,]force_kgf|force_N,
-//! Ux_mm,Uy_mm,Uz_mm,Lx_mm,Ly_mm,Lz_mm. Extra columns (a comment, a date) are ignored.
+//! Columns of the raw format: point,x_mm,y_mm,direction,step,[reading,]force_kgf|force_N,[force_nominal_N,]
+//! Ux_mm,Uy_mm,Uz_mm,Lx_mm,Ly_mm,Lz_mm. Extra columns (a comment, a date) are ignored. force_nominal_N, when
+//! given, is the round load each step is meant to add to step 0 (0 on step 0; one value per step).
 inline constexpr const char* kCampaignColumns =
     "point,x_mm,y_mm,direction,step,reading,force_kgf,Ux_mm,Uy_mm,Uz_mm,Lx_mm,Ly_mm,Lz_mm";
 

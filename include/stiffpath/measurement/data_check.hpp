@@ -29,12 +29,15 @@ inline bool is_angle(Quantity q) noexcept { return q == Quantity::rx || q == Qua
 //! Options of check_displacements().
 struct DataCheckOptions {
   double accuracy_m = 23e-6;  //!< CMM accuracy of one displacement cell (Faro Prime Arm ±23 µm, §2.3)
-  double ul_m = 0.160;        //!< |UL|: one angle cell is good to 2·accuracy/|UL| rad (U and L both off)
-  bool nominal_forces = false;  //!< regress on F_nominal_N (50 … 250 N) instead of F_N
+  //! |UL| of the robot's replica: one angle cell is good to 2·accuracy/|UL| rad (U and L both off); unset for a
+  //! robot measured without a replica, whose angle cells (rx, ry) are then not checked.
+  std::optional<double> ul_m;
+  bool nominal_forces = false;  //!< regress on the table's F_nominal_N (its round loads) instead of F_N
   //! Whether the robot is its own mirror image about y = 0 (the thesis's is); otherwise the symmetry
   //! check is skipped, since an asymmetric robot's data need not be symmetric.
   bool mirror_symmetric = true;
-  [[nodiscard]] double angle_accuracy_rad() const noexcept { return 2.0 * accuracy_m / ul_m; }
+  //! 0 without a replica.
+  [[nodiscard]] double angle_accuracy_rad() const noexcept { return ul_m ? 2.0 * accuracy_m / *ul_m : 0.0; }
 };
 
 //! Linearity of one quantity against force over the load steps of one series.
@@ -90,7 +93,8 @@ struct DataCheckReport {
   std::vector<SymmetryResult> symmetry;
   std::vector<ReciprocityResult> reciprocity;
   std::vector<MechanismComparison> comparison;
-  std::vector<std::string> skipped;  //!< checks that could not run, and why (missing partner, cells …)
+  std::vector<std::string> skipped;  //!< checks that could not run on these data, and why (a missing partner, cells …)
+  std::vector<std::string> not_applicable;  //!< checks that do not apply to this robot or table, and why
   [[nodiscard]] int flagged_count() const noexcept;
 };
 

@@ -35,9 +35,9 @@ struct DisplacementRow {
   std::string point;                     //!< "x1y1" … "x3y5" (or a user's id)
   double x_m = 0.0, y_m = 0.0;           //!< nominal platform position
   int step = 0;                          //!< load step, 1…n (numbered per series when the table has none)
-  double force_kgf = 0.0;                //!< hanging mass as in table 2.1 (includes step 0's 0.11 kgf); F_N/g0 if not given
+  double force_kgf = 0.0;                //!< the absolute hanging mass as recorded (table 2.1's column); F_N/g0 if not given
   double force_N = 0.0;                  //!< magnitude relative to step 0: (kgf − kgf₀)·9.80665
-  double nominal_force_N = 0.0;          //!< the thesis's rounded value (50 … 250 N); F_N if not given
+  double nominal_force_N = 0.0;          //!< the round load the table names for the step; F_N if not given
   std::optional<double> dx_m, dy_m, dz_m;
   std::optional<double> rx_rad, ry_rad;  //!< angular deflections about x and y
   std::optional<ReadingSpread> spread;   //!< from campaign processing with repeated readings

@@ -10,8 +10,8 @@ using Vec3 = Eigen::Vector3d;  //!< a point or vector in the CMM frame (m), alig
 //! Geometry of the laser-head replica (fig. 2.4): U is the upper and L the lower measured point on the
 //! replica's axis, G the platform's CG point between them.
 struct ReplicaGeometry {
-  double ug_m = 0.069;  //!< |UG| (fig. 2.4)
-  double ul_m = 0.160;  //!< |UL| (fig. 2.4); must exceed 0
+  double ug_m = 0.0;  //!< |UG| (fig. 2.4), the robot's (kinematics::Robot::replica)
+  double ul_m = 0.0;  //!< |UL| (fig. 2.4); must exceed 0
 };
 
 //! Eq. 2.3: G = U + (|UG|/|UL|)·UL with UL = L − U.

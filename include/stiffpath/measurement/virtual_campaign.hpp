@@ -16,10 +16,14 @@ struct VirtualCampaignOptions {
   double noise_sigma_m = 11.5e-6;     //!< σ of the Gaussian error of every coordinate of U and L: the
                                       //!< arm's ±23 µm (§2.3) taken as a 2σ bound; 0 = exact readings
   std::uint64_t seed = 1;             //!< random seed (same seed, same readings on one platform)
-  double step0_kgf = 0.11;            //!< hanging load of the reference step 0 (table 2.1)
+  double step0_kgf = 0.0;             //!< hanging load of the reference step 0 (step0_load_kgf of the truth)
   double g_height_m = 0.0;            //!< z of G at step 0 in the CMM frame
   Tilt initial_tilt;                  //!< tilt of the replica at step 0 (a real platform is never level)
 };
+
+//! The hanging load of a table's reference step 0 (kgf): what its absolute force_kgf exceeds its relative F_N
+//! by (the thesis's table 2.1: the 0.11 kgf wire system), to the µkgf; 0 for a table whose forces are only in N.
+double step0_load_kgf(const DisplacementTable& table);
 
 //! Readings of a campaign whose true displacements and tilts are `truth` (one mechanism; every dx, dy,
 //! dz, rx, ry cell present, else stiffpath::Error naming the row's line). Step 0 of each series has G

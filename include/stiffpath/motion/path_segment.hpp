@@ -44,6 +44,8 @@ struct PathSegment {
   //! G64 Q (m), at most P/2: how far a chain of short lines merged into one (LineMerger) may pass from
   //! their vertices; the blend of the merged line then keeps within P minus this. 0: never merged.
   double merge_tolerance_m = 0.0;
+  //! M204 S: the program's acceleration limit for this segment (m/s²), below the machine's; 0: the machine's.
+  double max_acceleration_m_s2 = 0.0;
   int line = 0;                  //!< 1-based source line of the G-code block
   bool rapid = false;            //!< G0
   bool laser_on = false;         //!< laser firing: M3/M4 (M106, M62) active, power > 0 and not a G0 move

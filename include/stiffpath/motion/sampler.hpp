@@ -15,6 +15,8 @@ inline constexpr double default_sample_rate_hz = 2000.0;  //!< the thesis's cont
 using SegmentHistory = std::deque<PlannedSegment>;
 
 //! Something that hands out trajectory samples in time order; nullopt after the last one.
+class SlowdownReport;
+
 class SampleSource {
  public:
   virtual ~SampleSource() = default;
@@ -26,6 +28,8 @@ class SampleSource {
     (void)seconds;
     return nullptr;
   }
+  //! The time lost to each limit so far, for a planned G-code program (TrajectoryStream); nullptr otherwise.
+  [[nodiscard]] virtual const SlowdownReport* slowdowns() const { return nullptr; }
 };
 
 //! How many samples a Sampler at `rate_hz` hands out for segments ending at `duration_s`: every

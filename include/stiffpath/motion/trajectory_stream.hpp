@@ -54,7 +54,7 @@ class TrajectoryStream final : public SampleSource {
   [[nodiscard]] const std::vector<GcodeWarning>& warnings() const noexcept { return reader_->warnings(); }
   //! Where the plan loses time against the programmed feeds, and why (complete once next() has
   //! returned nullopt).
-  [[nodiscard]] const SlowdownReport& slowdowns() const noexcept { return tap_->report(); }
+  [[nodiscard]] const SlowdownReport* slowdowns() const noexcept override { return &tap_->report(); }
 
  private:
   std::unique_ptr<GcodeReader> reader_;

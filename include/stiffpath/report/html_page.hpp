@@ -21,6 +21,10 @@ std::string escape_html(const std::string& text);
 //! A table: a header row and rows of cells (escaped).
 std::string html_table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows);
 
+//! Plain text with Markdown tables (the experiment's summary.md) as HTML: each run of lines starting with '|' (a
+//! header row, the |---| row, body rows) becomes an html_table, every other non-empty line a paragraph.
+std::string markdown_html(const std::string& text);
+
 //! The SVG file `svg` as a <figure> element with the drawing inline (XML prolog and doctype removed,
 //! its ids prefixed with `key` so that several figures never share one) and a caption. Throws
 //! stiffpath::Error when the file cannot be read or holds no <svg> element.

@@ -9,6 +9,7 @@
 #include "stiffpath/compliance/model.hpp"
 #include "stiffpath/kinematics/robot.hpp"
 #include "stiffpath/job/job.hpp"
+#include "stiffpath/simulation/compensation_variant.hpp"
 #include "stiffpath/simulation/run_metrics.hpp"
 #include "stiffpath/simulation/twin_models.hpp"
 
@@ -46,9 +47,9 @@ TestMotion user_motion(const std::string& file_and_sides);
 struct RunSpec {
   std::string robot = "oc-gu";      //!< the robot's name (a preset or a robot file's `name`)
   std::string motion = "y";
-  double acceleration_g = 5.0;      //!< path acceleration limit, in g (jerk: default ramp time 5 ms)
-  bool compensated = true;
-  std::string variant = "thesis";   //!< which compensation when compensated: "thesis" or "default" (compensator_factory)
+  double acceleration_m_s2 = 49.03325;  //!< path acceleration limit (5 g; jerk: default ramp time 5 ms)
+  CompensationVariant variant = CompensationVariant::thesis;  //!< which compensation, or none
+  [[nodiscard]] bool compensated() const noexcept { return variant != CompensationVariant::without; }
 };
 
 //! Everything shared by the runs of a matrix. Documented defaults.
@@ -56,10 +57,10 @@ struct ExperimentOptions {
   std::vector<std::string> robots{"oc-gu", "oc-gl", "sc-gu", "sc-gl"};  //!< presets or robot files
   std::vector<std::string> motions{"x", "y", "triangle"};  //!< of test_motions(); may be empty when paths are given
   std::vector<TestMotion> paths;       //!< users' own paths, run after the motions
-  std::vector<double> accelerations_g{1, 2, 3, 4, 5};
+  std::vector<double> accelerations_m_s2{9.80665, 19.6133, 29.41995, 39.2266, 49.03325};  //!< 1 … 5 g
   //! Compensations run besides "without": "thesis" (the thesis's quasi-static bilinear method, drawn in the
   //! figures) and "default" (what `run --method auto` does: dynamic compensation on a smoothed reference with the model cross-validation favours).
-  std::vector<std::string> variants{"thesis", "default"};
+  std::vector<CompensationVariant> variants{CompensationVariant::thesis, CompensationVariant::default_run};
   bool cg_lever = true;  //!< the CG's height tilts the platform (make_cg_lever); false: the CG at G
   //! Compensate with C_true (+ the CG lever) itself instead of the fitted model: the error budget's case
   //! without model error.

@@ -14,13 +14,14 @@ namespace stiffpath::simulation {
 struct RobustnessOptions {
   std::string robot = "oc-gu";
   std::vector<std::string> motions{"triangle-off", "y-mid-2"};  //!< of test_motions()
-  double acceleration_g = 5.0;
-  std::vector<std::string> variants{"without", "thesis", "default"};
+  double acceleration_m_s2 = 49.03325;  //!< 5 g
+  std::vector<CompensationVariant> variants{CompensationVariant::without, CompensationVariant::thesis,
+                                            CompensationVariant::default_run};
   int seeds = 10;                                                  //!< truth/campaign seeds 1 … seeds
   std::vector<double> damping_ratios{0.01, 0.02, 0.05, 0.1, 0.2};   //!< the tip's ζ (nominal: base's)
   std::vector<double> mass_errors{-0.25, 0.25};                      //!< plant mass / believed mass − 1
   std::vector<double> servo_bandwidths_hz{50.0, 200.0};
-  std::vector<double> noise_sigmas_um{0.0, 23.0};                    //!< campaign noise σ per coordinate
+  std::vector<double> noise_sigmas_m{0.0, 23e-6};                     //!< campaign noise σ per coordinate
   ExperimentOptions base;   //!< the nominal twin (plant, C_true, campaign, compensator); robots/motions ignored
   int max_runs = 3000;      //!< refuse a sweep with more runs (≈ 10–25 ms each in a release build)
 };
@@ -29,7 +30,7 @@ struct RobustnessOptions {
 struct RobustnessRow {
   std::string factor;  //!< "nominal", "damping_ratio", "mass_error", "servo_bandwidth_hz", "noise_um"
   double value = 0.0;
-  std::string variant;
+  CompensationVariant variant = CompensationVariant::without;
   std::string motion;
   int runs = 0;
   double worst_overshoot_m = 0.0;     //!< ISO 9283 CO, largest over seeds (0 for a line)

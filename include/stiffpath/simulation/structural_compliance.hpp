@@ -1,6 +1,8 @@
 // C_true of a different family: an elastic network of the five-bar's links and parallelograms, fitted to the robot's table.
 #pragma once
 
+#include <nlohmann/json_fwd.hpp>
+
 #include <array>
 #include <memory>
 
@@ -65,10 +67,11 @@ class StructuralModel final : public compliance::Model {
   StructuralModel(const kinematics::Robot& robot, std::array<ArmCompliance, 2> arms, compliance::GridBounds region,
                   BaseCompliance base = {}, compliance::Vec2 measured_offset_m = compliance::Vec2::Zero());
 
-  [[nodiscard]] std::string method() const override { return "structural"; }
+  [[nodiscard]] std::string description() const override { return "structural network"; }
   [[nodiscard]] compliance::Mat2 compliance(const compliance::Vec2& p) const noexcept override;
   [[nodiscard]] compliance::GridBounds bounds() const noexcept override { return region_; }
-  [[nodiscard]] nlohmann::json parameters() const override;
+  //! Its parameters and fit statistics as JSON, as model files hold them (compliance::model_parameters).
+  [[nodiscard]] nlohmann::json parameters() const;
   [[nodiscard]] const std::array<ArmCompliance, 2>& arms() const noexcept { return arms_; }
   [[nodiscard]] const BaseCompliance& base() const noexcept { return base_; }
   [[nodiscard]] const compliance::Vec2& measured_offset() const noexcept { return offset_; }

@@ -1,6 +1,8 @@
 // A smooth compliance field sampled once on a fine lattice and read back by bicubic interpolation: the twin's C_true at table speed.
 #pragma once
 
+#include <nlohmann/json_fwd.hpp>
+
 #include <memory>
 
 #include "stiffpath/compliance/field_lattice.hpp"
@@ -20,11 +22,13 @@ class TabulatedModel final : public compliance::Model {
  public:
   TabulatedModel(std::shared_ptr<const compliance::Model> base, const compliance::GridBounds& region, double spacing_m);
 
-  [[nodiscard]] std::string method() const override { return base_->method(); }
+  [[nodiscard]] std::optional<compliance::FitMethod> method() const noexcept override { return base_->method(); }
+  [[nodiscard]] std::string description() const override { return base_->description(); }
   [[nodiscard]] compliance::Mat2 compliance(const compliance::Vec2& p) const noexcept override;
   [[nodiscard]] compliance::GridBounds bounds() const noexcept override { return base_->bounds(); }
   //! The base's parameters, with the lattice's spacing and region.
-  [[nodiscard]] nlohmann::json parameters() const override;
+  //! Its parameters and fit statistics as JSON, as model files hold them (compliance::model_parameters).
+  [[nodiscard]] nlohmann::json parameters() const;
 
   [[nodiscard]] const compliance::GridBounds& region() const noexcept { return lattice_.region(); }
   [[nodiscard]] double spacing_m() const noexcept { return lattice_.spacing_m(); }

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "stiffpath/compliance/model.hpp"
@@ -10,6 +11,12 @@
 #include "stiffpath/measurement/displacement_table.hpp"
 
 namespace stiffpath::simulation {
+
+//! The family of the twin's true compliance field.
+enum class TrueFamily : std::uint8_t {
+  structural,  //!< simulation::StructuralModel: virtual joints, of a family no compensation model has
+  physical,    //!< order 1, C = U⁻ᵀ D(p) U⁻¹: the family of the compensation's `physical` fit
+};
 
 //! How C_true is made. Defaults: the structural model fitted to the robot's own data, perturbed by ±10 %.
 struct TrueComplianceOptions {
@@ -21,9 +28,7 @@ struct TrueComplianceOptions {
   //! definite and makes it differ from anything the thesis's data say. 0 = the base field itself.
   double perturbation = 0.10;
   std::uint64_t seed = 1;  //!< seed of the perturbation's coefficients
-  //! "structural" (StructuralModel: virtual joints, of a family no compensation model has) or "physical"
-  //! (order 1, C = U⁻ᵀ D(p) U⁻¹: the family of the compensation's `physical` fit).
-  std::string family = "structural";
+  TrueFamily family = TrueFamily::structural;
   //! An already made base field (e.g. one structural fit shared by many seeds); overrides the above.
   std::shared_ptr<const compliance::Model> base;
 };
@@ -38,9 +43,8 @@ std::shared_ptr<const compliance::Model> make_true_base(const kinematics::Robot&
 
 //! How the compensation model is obtained from C_true (the thesis's route, §2.3 and §4.2).
 struct CampaignFitOptions {
-  //! compliance::fit_model method; empty: the robot file's method (the presets: "bilinear", the
-  //! thesis's grid + eq. 4.12), else the one cross-validation of the virtual table favours.
-  std::string method;
+  //! The fit's method; unset: the robot file's, else the one cross-validation of the virtual table favours.
+  std::optional<compliance::FitMethod> method;
   double noise_sigma_m = 11.5e-6;   //!< σ per CMM coordinate: the arm's ±23 µm as a 2σ bound
   std::uint64_t seed = 7;           //!< seed of the campaign's noise
 };
@@ -60,3 +64,11 @@ std::shared_ptr<const compliance::Model> fit_compensation_model(const compliance
                                                                 const CampaignFitOptions& options = {});
 
 }  // namespace stiffpath::simulation
+
+//! Names at the edges (--truth): "structural", "physical".
+template <>
+struct stiffpath::core::EnumNames<stiffpath::simulation::TrueFamily> {
+  static constexpr std::string_view what = "C_true family";
+  static constexpr std::array<std::pair<simulation::TrueFamily, std::string_view>, 2> names{
+      {{simulation::TrueFamily::structural, "structural"}, {simulation::TrueFamily::physical, "physical"}}};
+};

@@ -173,8 +173,8 @@ Plate load_plate(const std::filesystem::path& path) {
   const core::JsonDocument doc = core::read_json_document(path.string());
   // Where an entry of the file is, so that the renderer's refusals (off the page, off the bed) name it.
   const auto locate = [&](const std::string& entry) {
-    const auto it = doc.keys.find(entry);
-    return it == doc.keys.end() ? SourceLocation{path.string(), 0, 0} : SourceLocation{path.string(), it->second.first, it->second.second};
+    const auto at = core::locate_json_path(doc.text, entry);
+    return at ? SourceLocation{path.string(), at->first, at->second} : SourceLocation{path.string(), 0, 0};
   };
   const core::JsonObject root(doc);
   root.allow_only({"comment", "page_mm", "marks", "fiducials", "labels", "scanner"});

@@ -1,0 +1,77 @@
+// `stiffpath calibrate plate`: writes the calibration plate (G-code and its description) for a robot's measured region.
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <memory>
+
+#include "commands.hpp"
+#include "robot_flags.hpp"
+#include "stiffpath/calibration/plate.hpp"
+#include "stiffpath/compliance/model_factory.hpp"
+#include "stiffpath/core/atomic_file.hpp"
+#include "stiffpath/core/distinct_files.hpp"
+#include "stiffpath/core/error.hpp"
+#include "stiffpath/core/output_budget.hpp"
+#include "stiffpath/core/units.hpp"
+
+namespace stiffpath::cli {
+
+namespace {
+struct PlateArgs {
+  std::string robot, output, accel = "5g";
+  bool json = false;
+};
+
+// Where the robot's compliance model holds: its measurement points' rectangle, or its model file's.
+compliance::GridBounds measured_region(const kinematics::Robot& robot) {
+  if (!robot.compliance.table.empty()) return compliance::table_region(compliance::robot_table(robot));
+  if (!robot.compliance.model.empty()) return compliance::load_robot_model(robot).model->bounds();
+  throw Error(SourceLocation{robot.file.label()},
+              fmt::format("robot '{}' has no compliance data: the plate is laid out over its measured region", robot.name));
+}
+
+void plate(const PlateArgs& a) {
+  const auto robot = load_robot_flag(a.robot);
+  calibration::PlateOptions options;
+  try {
+    options.acceleration_m_s2 = units::parse_acceleration_m_s2(a.accel);
+  } catch (const Error& e) {
+    throw Error("--accel: " + e.message());
+  }
+  const calibration::PlateDesign design = calibration::design_plate(robot, measured_region(robot), options);
+  const std::filesystem::path dir(a.output);
+  core::check_distinct_files(robot_inputs(robot, true), {{"-o", (dir / "plate.gcode").string()}, {"-o", (dir / "plate.json").string()}});
+  core::create_output_directory(dir);
+  core::write_file_atomically(dir / "plate.gcode", calibration::plate_gcode(design, options));
+  core::write_file_atomically(dir / "plate.json", calibration::plate_json(design));
+  if (a.json) {
+    print_json({{"robot", robot.name},
+                {"fiducials", design.fiducials.size()},
+                {"marks", design.strokes.size()},
+                {"gcode", (dir / "plate.gcode").string()},
+                {"plate", (dir / "plate.json").string()}});
+    return;
+  }
+  fmt::print("calibration plate for {}: {} fiducials and {} strokes over x [{:.1f}, {:.1f}] mm, y [{:.1f}, {:.1f}] mm\n",
+             robot.name, design.fiducials.size(), design.strokes.size(), units::m_to_mm(design.area.x_min),
+             units::m_to_mm(design.area.x_max), units::m_to_mm(design.area.y_min), units::m_to_mm(design.area.y_max));
+  fmt::print("wrote {} and {}\nnext: stiffpath run {} --robot {} -o {} ; mark it, scan the sheet at 1200 dpi, then "
+             "stiffpath calibrate fit\n",
+             (dir / "plate.gcode").string(), (dir / "plate.json").string(), (dir / "plate.gcode").string(),
+             a.robot.empty() ? robot.name : a.robot, (dir / "plate_joints.csv").string());
+}
+}  // namespace
+
+void add_calibrate_command(CLI::App& app) {
+  auto* calibrate = app.add_subcommand("calibrate", "Calibrate the robot from its own marks: a plate to mark, then a fit");
+  calibrate->require_subcommand(1);
+  auto a = std::make_shared<PlateArgs>();
+  auto* plate_cmd = calibrate->add_subcommand("plate", "Write a calibration plate (plate.gcode, plate.json) for a robot");
+  add_robot_flag(plate_cmd, a->robot);
+  plate_cmd->add_option("--accel", a->accel, "The plate's highest acceleration, e.g. 5g or 49 (m/s^2)")->capture_default_str();
+  plate_cmd->add_option("-o,--output", a->output, "Directory to write plate.gcode and plate.json into")->required();
+  plate_cmd->add_flag("--json", a->json, "Print a JSON summary");
+  plate_cmd->callback([a] { plate(*a); });
+}
+
+}  // namespace stiffpath::cli

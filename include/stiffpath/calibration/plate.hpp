@@ -1,0 +1,92 @@
+// The calibration plate: marks designed to identify a robot's dynamics and laser timing from a scan of what it marked.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "stiffpath/compliance/model.hpp"
+#include "stiffpath/kinematics/robot.hpp"
+
+namespace stiffpath::calibration {
+
+using kinematics::Vec2;
+
+//! A ring the robot marks slowly (no deflection), with a cross inside: its centre registers the scan to the
+//! robot frame. The shape's numbers are those the scan looks for (vision::FiducialShape).
+struct FiducialMark {
+  std::string id;                    //!< "F1" …
+  Vec2 centre_m = Vec2::Zero();      //!< robot frame
+  double ring_radius_m = 3e-3;       //!< radius of the ring's centre line
+  double cross_arm_m = 1.5e-3;       //!< half length of each stroke of the cross (stops short of the ring)
+};
+
+//! What a stroke shows.
+enum class StrokeKind : std::uint8_t {
+  ringing,  //!< a fast stroke then, the laser still on, a slow tail at right angles (to its left), on which the
+            //!< tip's ringing after the stop draws a wave (wavelength: the tail's speed over the tip's frequency)
+  timing,   //!< a fast stroke whose laser switches on as it starts and off as it stops: where its ends fall on
+            //!< the paper shows the laser's timing against the motion
+};
+
+//! A stroke from rest along a direction to rest (exact stops), with or without its tail.
+struct StrokeMark {
+  std::string id;                    //!< "S2-D060-A1-R": station, direction (deg), acceleration level, kind
+  StrokeKind kind = StrokeKind::ringing;
+  Vec2 start_m = Vec2::Zero();       //!< robot frame
+  Vec2 end_m = Vec2::Zero();         //!< end of the stroke (start of the tail)
+  Vec2 tail_end_m = Vec2::Zero();    //!< ringing strokes: end of the tail; timing strokes: end_m
+  double acceleration_m_s2 = 0.0;    //!< the planner's limit for this mark (M204)
+  double feed_m_s = 0.0;             //!< the stroke's programmed speed
+  double tail_feed_m_s = 0.0;        //!< the tail's (ringing strokes)
+  //! The commanded path: start, end (and the tail's end for a ringing stroke).
+  [[nodiscard]] std::vector<Vec2> polyline_m() const {
+    return kind == StrokeKind::ringing ? std::vector<Vec2>{start_m, end_m, tail_end_m} : std::vector<Vec2>{start_m, end_m};
+  }
+};
+
+//! How a plate is laid out. Documented defaults; every length fits the robot's own measured region.
+struct PlateOptions {
+  double acceleration_m_s2 = 49.03325;  //!< the highest acceleration (5 g); the job's --accel
+  //! The accelerations, as fractions of acceleration_m_s2 (at least two: deflection scales with it, laser
+  //! timing does not).
+  std::vector<double> acceleration_levels{1.0, 0.5};
+  std::vector<double> directions_deg{0.0, 60.0, 120.0};  //!< at least three
+  int stations_x = 2, stations_y = 2;  //!< places spread over the measured region (at least four)
+  double tail_length_m = 4e-3;
+  double tail_feed_m_s = 0.02;         //!< 20 mm/s: a 40 Hz ringing draws waves 0.5 mm long
+  double fiducial_feed_m_s = 0.01;     //!< the fiducials' speed (10 mm/s: no deflection to speak of)
+  double sheet_long_m = 0.297;         //!< the sheet (A4)
+  double sheet_short_m = 0.210;
+  double margin_m = 1.5e-3;            //!< kept clear between marks, and inside the region's edge
+};
+
+//! A plate: what `calibrate plate` writes as plate.json (and, as G-code, plate.gcode).
+struct PlateDesign {
+  std::string robot;                  //!< name
+  std::string geometry_sha256;        //!< the robot's geometry hash: a plate is for one robot
+  compliance::GridBounds area;        //!< where the marks are (robot frame, m)
+  compliance::GridBounds sheet;       //!< the sheet's rectangle (robot frame, m)
+  std::vector<FiducialMark> fiducials;
+  std::vector<StrokeMark> strokes;
+  double laser_power = 1.0;           //!< fraction of full power of every mark
+};
+
+//! Lays out a plate for `robot` over `region` (its measured region: where its compliance model holds): the
+//! sheet centred on it, four fiducials in the corners of the marked area, and stations_x × stations_y
+//! stations, each with a ringing stroke per direction and acceleration level and a timing stroke per direction
+//! at the highest level, each in a cell of its own, so no two marks cross. Every mark's point is checked against the robot (reach and joint limits). Throws stiffpath::Error
+//! for options out of range or a region that cannot hold the plate, naming what does not fit.
+PlateDesign design_plate(const kinematics::Robot& robot, const compliance::GridBounds& region,
+                         const PlateOptions& options = {});
+
+//! The plate as a G-code program in the robot frame (mm, G21 G90 G61): the fiducials first, then the strokes,
+//! each with its acceleration (M204 S, mm/s²), the laser on for every mark (M3) and off between (M5).
+std::string plate_gcode(const PlateDesign& plate, const PlateOptions& options = {});
+
+//! Writes / reads plate.json (units in the keys: mm, mm/s, mm/s²). Reading checks every field with its line
+//! and column, and refuses unknown keys.
+std::string plate_json(const PlateDesign& plate);
+PlateDesign load_plate(const std::string& path);
+
+}  // namespace stiffpath::calibration
