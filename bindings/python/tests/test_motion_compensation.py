@@ -72,8 +72,10 @@ def test_compensate_equals_the_cli_joint_file(robot, trajectory, cli, tmp_path):
     # hold 8 samples each at 2 kHz and so lengthen the job by 16 samples.
     compensator = stiffpath.Compensator(robot)
     assert compensator.method == "dynamic"
-    joints = compensator.compensate(trajectory)
-    assert len(joints) == len(trajectory) + 2 * round(0.004 * 2000)
+    assert len(compensator.compensate(trajectory)) == len(trajectory) + 2 * round(0.004 * 2000)
+    # The main job itself (planned with its path, so the filters retime the path as run's do).
+    joints, summary = stiffpath.run(file=str(Y_MOTION), robot=robot)
+    assert summary["method"] == "dynamic" and summary["smooth_s"] == pytest.approx(0.008)
     out = tmp_path / "joints.csv"
     cli("run", Y_MOTION, "-o", out)
     assert_joints_equal_the_file(joints, read_joint_csv(out))
@@ -85,9 +87,8 @@ def test_compensate_equals_the_cli_joint_file(robot, trajectory, cli, tmp_path):
      ["--damping-ratio", "0.1", "--smooth-ms", "4", "--shaper", "zv"]),
 ])
 def test_compensation_options_equal_the_cli_flags(robot, trajectory, cli, tmp_path, options, flags):
-    compensator = stiffpath.Compensator(robot, method=options.pop("method"),
-                                        damping_ratio=options.pop("damping_ratio", 0.05))
-    joints = compensator.compensate(trajectory, **options)
+    joints, _ = stiffpath.run(file=str(Y_MOTION), robot=robot, method=options.pop("method"),
+                              damping_ratio=options.pop("damping_ratio", 0.05), **options)
     out = tmp_path / "joints.csv"
     cli("run", Y_MOTION, "-o", out, *flags)
     assert_joints_equal_the_file(joints, read_joint_csv(out))
