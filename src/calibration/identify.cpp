@@ -184,8 +184,14 @@ Identification identify(const std::vector<compensation::JointCommand>& commands,
     core::LeastSquaresProblem probe = problem;
     core::LevenbergMarquardt start(probe, x0, settings);
     const auto stats = *start.result(true).statistics;
+    // Each column to unit length: what decides identifiability is how nearly the parameters' effects on the marks
+    // coincide, not how large one of them is in its own units (a delay moves every end by far more than a 5 %
+    // compliance change moves a point, and would otherwise hide all the rest).
     Eigen::MatrixXd scaled = stats.jacobian;
-    for (int k = 0; k < kCount; ++k) scaled.col(k) *= problem.scale[k];
+    for (int k = 0; k < kCount; ++k) {
+      const double norm = scaled.col(k).norm();
+      if (norm > 0.0) scaled.col(k) /= norm;
+    }
     const std::vector<int> preference{9, 8, 7, 6, 2, 5, 1, 4, 0, 3};  // timing first, the field's constant last
     problem.fixed.assign(kCount, false);
     for (const int k : core::parameters_to_fix(scaled, settings.undetermined_ratio, preference)) problem.fixed[static_cast<std::size_t>(k)] = true;

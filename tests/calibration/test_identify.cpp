@@ -80,9 +80,7 @@ TEST(Identify, TheMarksOfTheRobotAsItIsFitWithNoChange) {
   for (const auto& v : id.values) EXPECT_NEAR(v.after, v.before, 1e-3 * std::max(1.0, std::abs(v.before))) << v.name;
 }
 
-// Not passing yet: the identification does not move from its starting point (after = before, scales 1), so
-// calibration from marks is unfinished; the test stays as the target it must reach.
-TEST(Identify, DISABLED_RecoversTheTipItWasMarkedWithWithinItsUncertainty) {
+TEST(Identify, RecoversTheTipItWasMarkedWithWithinItsUncertainty) {
   const Marked& m = marked();
   TipParameters truth;
   const auto area = m.plate.area;
@@ -96,6 +94,11 @@ TEST(Identify, DISABLED_RecoversTheTipItWasMarkedWithWithinItsUncertainty) {
   truth.laser_off_delay_s = -1.5e-3;
   const double noise = 2e-6;
   const Identification id = identify(m.commands, m.robot, *m.model, m.plate, observe(m, truth, noise, 7));
+  std::printf("%s after %d iterations, rms %.3g -> %.3g m\n", core::to_string(id.stop), id.iterations, id.rms_before_m,
+              id.rms_after_m);
+  for (const auto& v : id.values) {
+    std::printf("  %-18s %g -> %g +- %g%s\n", v.name.c_str(), v.before, v.after, v.sigma, v.determined ? "" : " (held)");
+  }
   // The fit explains the marks down to their noise, where before it missed them by tens of µm.
   EXPECT_GT(id.rms_before_m, 5e-6);
   EXPECT_LT(id.rms_after_m, 1.5 * noise);
