@@ -6,7 +6,9 @@
 #include <numbers>
 #include <string>
 
+#include "stiffpath/compliance/model_factory.hpp"
 #include "stiffpath/core/error.hpp"
+#include "stiffpath/kinematics/robot.hpp"
 #include "stiffpath/vision/render/calibration_plate.hpp"
 #include "stiffpath/vision/scan/plate_marks.hpp"
 
@@ -229,6 +231,43 @@ TEST(PlateMarks, AScanAtAnotherScaleIsRefusedWithItsResidual) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("do not fit the plate's by any rigid motion"), std::string::npos) << e.what();
   }
+}
+
+// The plate `calibrate plate` lays out for a preset (an A4 sheet, four fiducials on a rectangle's corners, strokes
+// in a grid of cells), each stroke marked as commanded, mirrored and turned on the bed, at 300 dpi: the strokes tell
+// the rectangle's four placements apart, and every stroke is found on its command.
+TEST(PlateMarks, ThePresetsPlateIsRegisteredAndEveryStrokeFound) {
+  const auto robot = kinematics::load_robot("oc-gu");
+  const PlateDesign design = calibration::design_plate(robot, compliance::table_region(compliance::robot_table(robot)));
+  std::vector<ObservedMark> commanded;
+  for (const auto& s : design.strokes) commanded.push_back({s.id, s.polyline_m()});
+  Plate plate = calibration_render_plate(design, commanded);
+  ScannerBed bed;
+  bed.width_m = plate.width_m + 16e-3;
+  bed.height_m = plate.height_m + 16e-3;
+  bed.page_at_m = {11e-3, 4e-3};
+  bed.page_angle_rad = 1.5 * kPi / 180;
+  bed.mirror = true;
+  plate.bed = bed;
+  const RenderedPlate rendered = render_plate(plate, scanner(300, 36));
+  const PlateObservation seen = observe_calibration_plate(design, rendered.image, rendered.dpi, "plate.png");
+  std::printf("[info] %zu warnings at %.0f dpi (sharp corners, ends not round at this resolution)\n", seen.warnings.size(),
+              rendered.dpi);
+  EXPECT_TRUE(seen.registration.mirrored);
+  EXPECT_LE(seen.registration.residual_rms_m, 10e-6);
+  ASSERT_EQ(seen.marks.size(), design.strokes.size());
+  double worst = 0, worst_end = 0;
+  for (std::size_t i = 0; i < design.strokes.size(); ++i) {
+    EXPECT_EQ(seen.marks[i].id, design.strokes[i].id);
+    for (const auto& p : seen.marks[i].points_m) worst = std::max(worst, distance_to(commanded[i].points_m, p));
+    worst_end = std::max({worst_end, (seen.marks[i].points_m.front() - commanded[i].points_m.front()).norm(),
+                          (seen.marks[i].points_m.back() - commanded[i].points_m.back()).norm()});
+  }
+  std::printf("[accuracy] %zu strokes at %.0f dpi: farthest point %.2f um from its command, farthest end %.2f um\n",
+              design.strokes.size(), rendered.dpi, worst * 1e6, worst_end * 1e6);
+  // 300 dpi keeps the test quick; a pixel is 85 µm, the mark 2.4 px wide (600 dpi: 8.3 µm, both).
+  EXPECT_LT(worst, 60e-6);
+  EXPECT_LT(worst_end, 80e-6);
 }
 
 // The page frame: the sheet seen from above, robot y up.

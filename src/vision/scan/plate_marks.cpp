@@ -44,8 +44,9 @@ std::pair<double, double> paper_level(const cv::Mat& crop) {
 }
 
 // One stroke: its corridor cut out of the scan (paper-like noise outside it), measured, mapped to the robot frame.
-void observe_stroke(const calibration::StrokeMark& stroke, const cv::Mat& grey, double dpi, const std::string& label,
-                    const PlateScanOptions& options, PlateObservation& out) {
+// `work` is a copy of `grey`, reused by every stroke.
+void observe_stroke(const calibration::StrokeMark& stroke, const cv::Mat& grey, cv::Mat& work, double dpi,
+                    const std::string& label, const PlateScanOptions& options, PlateObservation& out) {
   const double px_per_m = dpi / 0.0254;
   const PlateRegistration& reg = out.registration;
   std::vector<Point2> command_px;  // the commanded path on the scan (px)
@@ -61,7 +62,9 @@ void observe_stroke(const calibration::StrokeMark& stroke, const cv::Mat& grey, 
   const cv::Rect box = cv::Rect(cv::Point(static_cast<int>(std::floor(lo.x() - reach_px)), static_cast<int>(std::floor(lo.y() - reach_px))),
                                 cv::Point(static_cast<int>(std::ceil(hi.x() + reach_px)), static_cast<int>(std::ceil(hi.y() + reach_px)))) &
                        cv::Rect(0, 0, grey.cols, grey.rows);
-  cv::Mat crop = grey(box).clone();
+  // The box copied into the working image, paper-like noise put outside the corridor: other marks are not seen.
+  grey(box).copyTo(work(box));
+  cv::Mat crop = work(box);
   // The corridor: every pixel within half_px of the command (drawn with 1/16 px precision, round ends).
   cv::Mat corridor = cv::Mat::zeros(crop.size(), CV_8U);
   std::vector<cv::Point> pts;
@@ -79,9 +82,10 @@ void observe_stroke(const calibration::StrokeMark& stroke, const cv::Mat& grey, 
   so.sides = stroke.kind == calibration::StrokeKind::ringing ? 2 : 1;
   so.label = fmt::format("{}: stroke {}", label, stroke.id);
   so.metrics.corner_trim_m = options.corner_trim_m;
+  so.roi_px = box;  // positions stay in the whole scan's frame
   ScanResult result;
   try {
-    result = analyse_scan(crop, dpi, so);
+    result = analyse_scan(work, dpi, so);
   } catch (const Error& e) {
     out.warnings.push_back(fmt::format("stroke {}: not measured: {}", stroke.id, e.message()));
     return;
@@ -89,11 +93,10 @@ void observe_stroke(const calibration::StrokeMark& stroke, const cv::Mat& grey, 
   // Each side to the commanded segment it runs along, oriented as the command runs.
   const std::size_t segments = command_px.size() - 1;
   std::vector<std::vector<Point2>> along(segments);
-  const Point2 origin_px(box.x, box.y);
   for (const auto& side : result.sides) {
     if (side.centres.size() < 2) continue;
     std::vector<Point2> pts_px;
-    for (const auto& c : side.centres) pts_px.push_back(c * px_per_m + origin_px);
+    for (const auto& c : side.centres) pts_px.push_back(c * px_per_m);
     const Point2 dir = pts_px.back() - pts_px.front();
     std::size_t best = 0;
     double best_cos = -1;
@@ -151,7 +154,8 @@ PlateObservation observe_calibration_plate(const calibration::PlateDesign& plate
   }
   PlateObservation out;
   out.registration = detail::register_plate(plate, grey, dpi, label, options);
-  for (const auto& stroke : plate.strokes) observe_stroke(stroke, grey, dpi, label, options, out);
+  cv::Mat work = grey.clone();
+  for (const auto& stroke : plate.strokes) observe_stroke(stroke, grey, work, dpi, label, options, out);
   return out;
 }
 
