@@ -3,12 +3,16 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <numbers>
+#include <opencv2/imgcodecs.hpp>
 #include <string>
+#include <unistd.h>
 
 #include "stiffpath/compliance/model_factory.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/kinematics/robot.hpp"
+#include "stiffpath/vision/io/image_io.hpp"
 #include "stiffpath/vision/render/calibration_plate.hpp"
 #include "stiffpath/vision/scan/plate_marks.hpp"
 
@@ -268,6 +272,32 @@ TEST(PlateMarks, ThePresetsPlateIsRegisteredAndEveryStrokeFound) {
   // 300 dpi keeps the test quick; a pixel is 85 µm, the mark 2.4 px wide (600 dpi: 8.3 µm, both).
   EXPECT_LT(worst, 60e-6);
   EXPECT_LT(worst_end, 80e-6);
+}
+
+// From a file: its resolution read from the file, the same marks as from memory; a file without one refused.
+TEST(PlateMarks, AScanFileGivesItsResolutionOrIsRefused) {
+  const PlateDesign design = small_plate();
+  const RenderedPlate rendered = render_plate(on_bed(design, marked_paths(design), 1.0, false), scanner(400, 37));
+  const auto dir = std::filesystem::temp_directory_path() / ("stiffpath_plate_marks_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  write_image(dir / "plate.png", rendered.image, rendered.dpi);
+  cv::imwrite((dir / "bare.png").string(), rendered.image);  // no pHYs chunk
+  const PlateObservation from_file = observe_calibration_plate(design, dir / "plate.png");
+  const PlateObservation from_memory = observe_calibration_plate(design, rendered.image, rendered.dpi, "x");
+  ASSERT_EQ(from_file.marks.size(), from_memory.marks.size());
+  for (std::size_t i = 0; i < from_file.marks.size(); ++i) {
+    EXPECT_EQ(from_file.marks[i].points_m, from_memory.marks[i].points_m);
+  }
+  try {
+    observe_calibration_plate(design, dir / "bare.png");
+    ADD_FAILURE() << "a scan without a resolution was registered";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("bare.png: the file stores no resolution"), std::string::npos) << e.what();
+  }
+  PlateScanOptions given;
+  given.dpi = rendered.dpi;
+  EXPECT_EQ(observe_calibration_plate(design, dir / "bare.png", given).marks.size(), design.strokes.size());
+  std::filesystem::remove_all(dir);
 }
 
 // The page frame: the sheet seen from above, robot y up.
