@@ -72,6 +72,16 @@ void add_calibrate_command(CLI::App& app) {
   plate_cmd->add_option("-o,--output", a->output, "Directory to write plate.gcode and plate.json into")->required();
   plate_cmd->add_flag("--json", a->json, "Print a JSON summary");
   plate_cmd->callback([a] { plate(*a); });
+  // fit reads the scan, so it runs in stiffpath-vision (the program that links OpenCV), its arguments unchanged.
+  auto* fit_cmd = calibrate->add_subcommand("fit", "Identify the robot from a scan of its calibration plate (run by stiffpath-vision)");
+  fit_cmd->prefix_command();
+  fit_cmd->set_help_flag();
+  fit_cmd->callback([fit_cmd] {
+    std::vector<std::string> words{"calibrate", "fit"};
+    const auto rest = fit_cmd->remaining();
+    words.insert(words.end(), rest.begin(), rest.end());
+    run_vision_tool(words);
+  });
 }
 
 }  // namespace stiffpath::cli

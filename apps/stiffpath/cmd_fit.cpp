@@ -59,9 +59,9 @@ void run(const FitOptions& o) {
     print_json(doc);
     return;
   }
-  fmt::print("{} model of robot {} from {}{} ({} forces, {}, outside the measured region: {})\n", fitted.model->description(),
+  fmt::print("{} model of robot {} from {}{} ({} forces, {}, beyond the measured region: {})\n", fitted.model->description(),
              robot.name, fitted.provenance.source, rows.empty() ? "" : " rows " + rows, o.forces, o.zero_force,
-             o.outside);
+             compliance::outside_words(fitted.model->outside_policy()));
   if (fitted.provenance.selected_by == compliance::MethodSelection::cross_validation) {
     std::string scores;
     for (const auto& [name, um] : fitted.provenance.selection["mean_error_um"].items()) {

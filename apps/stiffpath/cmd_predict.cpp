@@ -93,7 +93,7 @@ void run(const PredictOptions& o) {
   }
   fmt::print("{} ({}) of robot {} at ({}, {}) mm under F = ({}, {}) N{}:\n", loaded.label, model.description(), robot.name,
              o.x_mm, o.y_mm, o.fx_n, o.fy_n,
-             model.inside(p) ? "" : fmt::format(" [outside the measured region: {}]", core::enum_name(model.outside_policy())));
+             model.inside(p) ? "" : fmt::format(" [outside the measured region: {}]", compliance::outside_words(model.outside_policy())));
   fmt::print("  dx = {:.2f} um, dy = {:.2f} um at G\n", d.x() * 1e6, d.y() * 1e6);
   if (out.contains("dx_band_95_um")) {
     fmt::print("  95 % band of the deflection: dx +- {:.2f} um, dy +- {:.2f} um; of a measurement of it (the campaign's "

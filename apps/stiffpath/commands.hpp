@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 namespace stiffpath::cli {
 
@@ -28,6 +29,11 @@ void add_experiment_command(CLI::App& app);
 void add_report_command(CLI::App& app);
 void add_linuxcnc_command(CLI::App& app);
 void add_calibrate_command(CLI::App& app);
+//! `calibrate fit`, in stiffpath-vision (it reads the scan).
+void add_calibrate_fit_command(CLI::App& app);
+//! Replaces this process with stiffpath-vision running `words` (the subcommand and its arguments); returns only by
+//! throwing when that program cannot be started.
+[[noreturn]] void run_vision_tool(const std::vector<std::string>& words);
 
 //! A JSON document as text (two-space indent; text that is not UTF-8 printed with U+FFFD in its place).
 std::string dump_json(const nlohmann::json& document);

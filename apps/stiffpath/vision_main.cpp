@@ -1,4 +1,4 @@
-// stiffpath-vision: the image subcommands (scan, render-scan) in a program of their own, the one that links OpenCV;
+// stiffpath-vision: the image subcommands (scan, render-scan, calibrate fit) in a program of their own, the one that links OpenCV;
 // `stiffpath scan …` and `stiffpath render-scan …` run it with their arguments.
 #include "cli_run.hpp"
 #include "commands.hpp"
@@ -10,5 +10,6 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   stiffpath::cli::add_scan_command(app);
   stiffpath::cli::add_render_scan_command(app);
+  stiffpath::cli::add_calibrate_fit_command(app);  // calibrate fit: reads the plate's scan
   return stiffpath::cli::run(app, argc, argv);
 }

@@ -14,26 +14,22 @@
 
 namespace stiffpath::cli {
 
-namespace {
-
 // Replaces this process with stiffpath-vision (beside this program, at the same place as in the install tree), so
 // its output, exit code and signals are the command's own. Returns only when the program cannot be started.
-[[noreturn]] void run_vision_tool(const std::string& command, const std::vector<std::string>& arguments) {
+void run_vision_tool(const std::vector<std::string>& arguments) {
   std::error_code error;
   const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", error);
   const std::filesystem::path tool = (error ? std::filesystem::path(".") : self.parent_path()) / STIFFPATH_VISION_TOOL;
-  std::vector<std::string> words{"stiffpath", command};
+  std::vector<std::string> words{"stiffpath"};
   words.insert(words.end(), arguments.begin(), arguments.end());
   std::vector<char*> argv;
   for (auto& word : words) argv.push_back(word.data());
   argv.push_back(nullptr);
   std::cout.flush();
   ::execv(tool.c_str(), argv.data());
-  throw std::runtime_error("cannot run " + tool.string() + " (the scan and render-scan commands): " +
+  throw std::runtime_error("cannot run " + tool.string() + " (the scan, render-scan and calibrate fit commands): " +
                            std::strerror(errno));
 }
-
-}  // namespace
 
 void add_vision_commands(CLI::App& app) {
   const std::pair<const char*, const char*> commands[] = {
@@ -45,7 +41,12 @@ void add_vision_commands(CLI::App& app) {
     cmd->prefix_command();  // every argument, --help included, belongs to stiffpath-vision
     cmd->set_help_flag();
     const std::string command = name;
-    cmd->callback([cmd, command] { run_vision_tool(command, cmd->remaining()); });
+    cmd->callback([cmd, command] {
+      std::vector<std::string> words{command};
+      const auto rest = cmd->remaining();
+      words.insert(words.end(), rest.begin(), rest.end());
+      run_vision_tool(words);
+    });
   }
 }
 

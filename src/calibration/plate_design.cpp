@@ -98,13 +98,16 @@ PlateDesign design_plate(const kinematics::Robot& robot, const compliance::GridB
   plate.sheet = {centre.x() - half_x, centre.x() + half_x, centre.y() - half_y, centre.y() + half_y};
   plate.area = intersect(region.grown(-o.margin_m), plate.sheet.grown(-kPaperEdge_m));
 
-  // Fiducials in the corners of the area; the strokes' band leaves them room along the longer side.
+  // Fiducials in the corners of the area; the strokes' band leaves them room along the longer side. The fourth is
+  // moved inwards along the shorter side by a ring's radius and the margin, so that the four are no rectangle:
+  // a rectangle fits a scan equally well turned by 180° or mirrored, and only the strokes could tell which.
   const FiducialMark shape;
   const double corner = shape.ring_radius_m + o.margin_m;
+  const Vec2 inwards = wide ? Vec2(0.0, -corner) : Vec2(corner, 0.0);
   const Vec2 corners[4] = {{plate.area.x_min + corner, plate.area.y_min + corner},
                            {plate.area.x_max - corner, plate.area.y_min + corner},
                            {plate.area.x_max - corner, plate.area.y_max - corner},
-                           {plate.area.x_min + corner, plate.area.y_max - corner}};
+                           Vec2(plate.area.x_min + corner, plate.area.y_max - corner) + inwards};
   for (int k = 0; k < 4; ++k) {
     FiducialMark f = shape;
     f.id = fmt::format("F{}", k + 1);

@@ -28,7 +28,7 @@ std::string plate_gcode(const PlateDesign& plate, const PlateOptions& options) {
     const double feed = mm_min(options.fiducial_feed_m_s);
     g += fmt::format("; fiducial {}\nG0 {}\nM3 S{:g}\nG2 {} I{:.4f} J0 F{:.1f}\nM5\n", f.id, xy(ring_start), power_s,
                      xy(ring_start), -units::m_to_mm(f.ring_radius_m), feed);
-    for (const Vec2 arm : {Vec2(f.cross_arm_m, 0.0), Vec2(0.0, f.cross_arm_m)}) {
+    for (const Vec2& arm : {Vec2(f.cross_arm_m, 0.0), Vec2(0.0, f.cross_arm_m)}) {
       g += fmt::format("G0 {}\nM3 S{:g}\nG1 {} F{:.1f}\nM5\n", xy(f.centre_m - arm), power_s, xy(f.centre_m + arm), feed);
     }
   }

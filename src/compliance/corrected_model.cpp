@@ -26,7 +26,7 @@ CorrectedModel::CorrectedModel(std::shared_ptr<Model> base, ComplianceCorrection
     throw Error("compliance correction: the half sizes must be positive and the origin finite");
   }
   const GridBounds b = base_->bounds();
-  for (const Vec2 corner : {Vec2(b.x_min, b.y_min), Vec2(b.x_max, b.y_min), Vec2(b.x_min, b.y_max), Vec2(b.x_max, b.y_max)}) {
+  for (const Vec2& corner : {Vec2(b.x_min, b.y_min), Vec2(b.x_max, b.y_min), Vec2(b.x_min, b.y_max), Vec2(b.x_max, b.y_max)}) {
     const Vec2 s = correction_.factors(corner);
     if (!(s.x() > 0.0 && s.y() > 0.0) || !s.allFinite()) {
       throw Error(fmt::format("compliance correction: its factors ({:g}, {:g}) at ({:.1f}, {:.1f}) mm are not positive: "

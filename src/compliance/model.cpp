@@ -7,6 +7,15 @@
 
 namespace stiffpath::compliance {
 
+const char* outside_words(OutsidePolicy policy) noexcept {
+  switch (policy) {
+    case OutsidePolicy::clamp: return "clamped to the region's edge";
+    case OutsidePolicy::extrapolate: return "extrapolated";
+    case OutsidePolicy::error: return "refused";
+  }
+  return "refused";
+}
+
 Vec2 GridBounds::clamp(const Vec2& p) const noexcept {
   return {std::clamp(p.x(), x_min, x_max), std::clamp(p.y(), y_min, y_max)};
 }

@@ -100,11 +100,11 @@ void VertexFinder::settle(const Vertex& v, std::vector<Vertex>& out) {
   // side it falls).
   if (best > 0 && best + 1 < open_.size()) {
     const Point2 a = anchor_.point, b = open_[best - 1].point, c = open_[best + 1].point, e = v.point;
-    const Point2 in = b - a, out = e - c;
-    const double cross = in.x() * out.y() - in.y() * out.x();
-    if (in.norm() > 0.0 && out.norm() > 0.0 && std::abs(cross) > 1e-3 * in.norm() * out.norm()) {
+    const Point2 in = b - a, leaving = e - c;
+    const double cross = in.x() * leaving.y() - in.y() * leaving.x();
+    if (in.norm() > 0.0 && leaving.norm() > 0.0 && std::abs(cross) > 1e-3 * in.norm() * leaving.norm()) {
       const Point2 d = c - a;
-      const Point2 corner = a + in * ((d.x() * out.y() - d.y() * out.x()) / cross);
+      const Point2 corner = a + in * ((d.x() * leaving.y() - d.y() * leaving.x()) / cross);
       std::size_t nearest = best;
       for (std::size_t i : {best - 1, best + 1}) {
         const bool near = (open_[i].point - open_[best].point).norm() < tol_;  // keeps every point within 3 tol

@@ -68,7 +68,9 @@ std::string PreparedJob::filters_text() const {
 
 PreparedJob prepare(JobSpec spec, Program program) {
   check_spec(spec);
-  PreparedJob job{.spec = std::move(spec), .program = std::move(program)};
+  PreparedJob job;
+  job.spec = std::move(spec);
+  job.program = std::move(program);
   JobSpec& s = job.spec;
 
   // The model: needed to compensate; loaded without compensation too when the robot has data, so that

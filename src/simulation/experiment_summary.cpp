@@ -41,13 +41,14 @@ std::string summary_at(const std::vector<RunResult>& results, double a) {
     const RunResult* off = find(results, robot, motion, a, CompensationVariant::without);
     const RunResult* on = find(results, robot, motion, a, variant);
     if (!off || !on) continue;
-    const auto& a = off->metrics;
-    const auto& b = on->metrics;
+    const auto& before = off->metrics;
+    const auto& after = on->metrics;
     out += fmt::format("| {} | {} | {} | {:.4f} → {:.4f} | {} | {:.4f} → {:.4f} | {} | {:.3f} → {:.3f} | {:.4f} → {:.4f} |\n",
-                       robot, motion, core::enum_name(variant), a.length_error_m * 1e3, b.length_error_m * 1e3,
-                       removed(a.length_error_m, b.length_error_m), a.max_deviation_m * 1e3, b.max_deviation_m * 1e3,
-                       removed(a.max_deviation_m, b.max_deviation_m), a.deviation_area_m2 * 1e6,
-                       b.deviation_area_m2 * 1e6, a.residual_vibration_m * 1e3, b.residual_vibration_m * 1e3);
+                       robot, motion, core::enum_name(variant), before.length_error_m * 1e3, after.length_error_m * 1e3,
+                       removed(before.length_error_m, after.length_error_m), before.max_deviation_m * 1e3,
+                       after.max_deviation_m * 1e3, removed(before.max_deviation_m, after.max_deviation_m),
+                       before.deviation_area_m2 * 1e6, after.deviation_area_m2 * 1e6,
+                       before.residual_vibration_m * 1e3, after.residual_vibration_m * 1e3);
   }
   return out;
 }

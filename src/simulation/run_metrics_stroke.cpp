@@ -46,7 +46,7 @@ StrokeMeter::StrokeMeter(int sides, const evaluation::PathMetricsOptions& option
                     area_m2_ += side.deviation_area_m2;
                     max_deviation_m_ = std::max(max_deviation_m_, side.max_deviation_m);
                   }),
-      command_chain_(options, [this](std::size_t k, evaluation::SideMetrics&& side) {
+      command_chain_(options, [this](std::size_t, evaluation::SideMetrics&& side) {
         commanded_m_ += side.length_m;
         command_deviation_m_ = std::max(command_deviation_m_, side.max_offset_m);
       }) {}

@@ -77,6 +77,7 @@ const Pair pairs[] = {
     {"geometry plan --robot {in} -o {out}", "r.json", "-o"},
     {"geometry fit {in} -o {out}", "c.csv", "-o"},
     {"geometry simulate --truth {in} --poses c.csv -o {out}", "r.json", "-o"},
+    {"calibrate fit plate.json scan.png --joints {in} -o {out}", "c.csv", "-o"},
 };
 
 std::string command_for(std::string text, const std::string& in, const std::string& out) {

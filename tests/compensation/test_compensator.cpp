@@ -22,7 +22,12 @@ std::shared_ptr<const compliance::Model> thesis(const std::string& name) {
 
 // The thesis's step (fig. 4.3, quasi-static) at gain k: what these tests check against eqs. 4.4-4.7.
 CompensatorOptions quasi_static(double k = 1.0, bool enabled = true, bool check_limits = true) {
-  return {.gain = k, .enabled = enabled, .check_limits = check_limits, .method = Method::quasi_static};
+  CompensatorOptions o;
+  o.gain = k;
+  o.enabled = enabled;
+  o.check_limits = check_limits;
+  o.method = Method::quasi_static;
+  return o;
 }
 
 // A planar trajectory p(t) = c + A·(sin ωt, sin 2ωt) with its analytic derivatives.

@@ -145,7 +145,9 @@ TEST(DynamicInversion, ZeroDampingIsTheStaticOffsetAtTheBasePoint) {
   CompensatorOptions dyn;
   dyn.method = Method::dynamic;
   dyn.damping_ratio = 0.0;
-  const Compensator a(robot, model, dyn), b(robot, model, {.method = Method::quasi_static});
+  CompensatorOptions quasi;
+  quasi.method = Method::quasi_static;
+  const Compensator a(robot, model, dyn), b(robot, model, quasi);
   for (double t = 0.0; t < 0.14; t += 0.003) {
     const TaskSample s = septic_move(kCases[1].from, kCases[1].to, 0.14, t);
     const JointCommand ca = a.step(s), cb = b.step(s);

@@ -14,8 +14,8 @@ namespace stiffpath::calibration {
 
 //! The files of a calibrated robot, as JSON documents.
 struct CalibratedRobot {
-  nlohmann::json robot;  //!< a robot file: the robot's own, with the identified damping ratio, frequency scale and
-                         //!< laser delays, and `compliance.model` naming the model file
+  nlohmann::json robot;  //!< a robot file: the robot's own, with the identified damping ratio and frequency scale,
+                         //!< and `compliance.model` naming the model file (the laser's delays are only reported)
   nlohmann::json model;  //!< a model file: the robot's model with the identified correction of its field
 };
 

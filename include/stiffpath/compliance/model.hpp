@@ -28,6 +28,9 @@ enum class OutsidePolicy {
                 //!< the rectangle; within the margin the model clamps
 };
 
+//! What the policy does, in words for messages: "refused", "clamped to the region's edge", "extrapolated".
+[[nodiscard]] const char* outside_words(OutsidePolicy policy) noexcept;
+
 //! Whether the thesis's zero-force intercepts (n, p, u, w of eq. 4.8) are part of the prediction.
 enum class ZeroForce {
   relative,    //!< Δ(p, F) − Δ(p, 0): a robot at rest is not moved (default for compensation)

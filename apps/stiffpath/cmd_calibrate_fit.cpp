@@ -1,0 +1,135 @@
+// `stiffpath calibrate fit`: a scanned plate and its joint file in, the robot identified from its own marks out.
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <memory>
+
+#include "bounded.hpp"
+#include "commands.hpp"
+#include "robot_flags.hpp"
+#include "vision_resources.hpp"
+#include "stiffpath/calibration/calibrated_robot.hpp"
+#include "stiffpath/calibration/identify.hpp"
+#include "stiffpath/calibration/plate.hpp"
+#include "stiffpath/core/atomic_file.hpp"
+#include "stiffpath/core/distinct_files.hpp"
+#include "stiffpath/core/error.hpp"
+#include "stiffpath/core/output_budget.hpp"
+#include "stiffpath/job/joint_reader.hpp"
+#include "stiffpath/vision/scan/plate_marks.hpp"
+
+namespace stiffpath::cli {
+
+namespace {
+
+//! The most joint records a plate's joint file may hold: 2 M (1000 s at 2 kHz; a plate takes well under a minute).
+constexpr std::size_t kMaxPlateCommands = 2'000'000;
+
+struct FitArgs {
+  std::string plate, scan, joints, robot, output, report_dir;
+  ModelFlags model;
+  bool json = false;
+};
+
+std::vector<compensation::JointCommand> read_commands(const std::string& path, const kinematics::Robot& robot) {
+  job::JointReader reader(path);
+  std::vector<compensation::JointCommand> out;
+  while (auto c = reader.next()) {
+    if (out.size() == kMaxPlateCommands) {
+      throw Error(SourceLocation{path}, fmt::format("LIMIT: more than {} joint records; a plate's joint file holds far fewer",
+                                                    kMaxPlateCommands));
+    }
+    out.push_back(*c);
+  }
+  if (!reader.geometry_hash().empty() && reader.geometry_hash() != robot.geometry_hash()) {
+    throw Error(SourceLocation{path}, fmt::format("the joint file was written for another robot geometry ({}) than robot "
+                                                  "'{}': run the plate with the robot being calibrated",
+                                                  reader.mechanism().empty() ? "unnamed" : reader.mechanism(), robot.name));
+  }
+  return out;
+}
+
+void fit(const FitArgs& a) {
+  const auto robot = load_robot_flag(a.robot);
+  const std::filesystem::path out(a.output);
+  const std::string model_name = out.stem().string() + "_model.json";
+  const std::filesystem::path model_path = out.parent_path() / model_name;
+  const std::filesystem::path report_dir =
+      a.report_dir.empty() ? out.parent_path() / (out.stem().string() + "_report") : std::filesystem::path(a.report_dir);
+  core::check_distinct_files(
+      robot_inputs(robot, true, {{"plate", a.plate}, {"scan", a.scan}, {"--joints", a.joints}, {"--model", a.model.model}}),
+      {{"-o", a.output}, {"(the model file)", model_path.string()}, {"(the report)", (report_dir / "calibration.json").string()}});
+  const calibration::PlateDesign plate = calibration::load_plate(a.plate);
+  if (plate.geometry_sha256 != robot.geometry_hash()) {
+    throw Error(SourceLocation{a.plate}, fmt::format("the plate was laid out for robot '{}' of another geometry than '{}'",
+                                                     plate.robot, robot.name));
+  }
+  const auto commands = read_commands(a.joints, robot);
+  const compliance::LoadedModel base = compliance::load_robot_model(robot, model_request(a.model));
+  core::check_output_directory(report_dir.string());
+
+  const vision::PlateObservation seen = vision::observe_calibration_plate(plate, a.scan);
+  const calibration::Identification id = calibration::identify(commands, robot, *base.model, plate, seen.marks);
+  const calibration::CalibratedRobot files = calibration::calibrated_robot(robot, base, id, model_name);
+
+  // The model first, so that the robot file that names it is checked as every command will read it.
+  core::write_file_atomically(model_path, files.model.dump(2) + "\n");
+  const std::string robot_text = files.robot.dump(2) + "\n";
+  (void)kinematics::parse_robot(robot_text, core::DataRef{a.output, false});
+  nlohmann::json report = calibration::identification_json(id);
+  const auto& r = seen.registration;
+  report["registration"] = {{"fiducials", r.fiducials},
+                            {"mirrored", r.mirrored},
+                            {"residual_rms_um", r.residual_rms_m * 1e6},
+                            {"residual_max_um", r.residual_max_m * 1e6}};
+  report["warnings"] = seen.warnings;
+  report["robot"] = robot.name;
+  report["plate"] = a.plate;
+  report["scan"] = a.scan;
+  report["joints"] = a.joints;
+  core::create_output_directory(report_dir.string());
+  core::write_file_atomically(report_dir / "calibration.json", report.dump(2) + "\n");
+  core::write_file_atomically(out, robot_text);
+  if (a.json) {
+    report["output"] = a.output;
+    report["model_file"] = model_path.string();
+    print_json(report);
+    return;
+  }
+  fmt::print("{}: {} marks measured on {} (registered by {} fiducials{}, residual {:.1f} um rms)\n", robot.name,
+             seen.marks.size(), a.scan, r.fiducials, r.mirrored ? ", mirrored" : "", r.residual_rms_m * 1e6);
+  for (const auto& w : seen.warnings) fmt::print("  warning: {}\n", w);
+  fmt::print("  misfit of the marks {:.1f} um rms before, {:.1f} um after ({}, {} iterations)\n", id.rms_before_m * 1e6,
+             id.rms_after_m * 1e6, core::to_string(id.stop), id.iterations);
+  for (const auto& v : id.values) {
+    if (v.determined) {
+      fmt::print("  {:<18} {:>10.5g} -> {:>10.5g} +- {:.2g}\n", v.name, v.before, v.after, v.sigma);
+    } else {
+      fmt::print("  {:<18} {:>10.5g}    held: the plate does not determine it\n", v.name, v.before);
+    }
+  }
+  fmt::print("wrote {}, {} and {}\n", a.output, model_path.string(), (report_dir / "calibration.json").string());
+}
+
+}  // namespace
+
+void add_calibrate_fit_command(CLI::App& app) {
+  auto* calibrate = app.add_subcommand("calibrate", "Calibrate the robot from its own marks");
+  calibrate->require_subcommand(1);
+  auto a = std::make_shared<FitArgs>();
+  auto* cmd = calibrate->add_subcommand("fit", "Identify the robot from a scan of its calibration plate");
+  cmd->add_option("plate", a->plate, "The plate's description (plate.json from calibrate plate)")->required();
+  cmd->add_option("scan", a->scan, "The scanned sheet (PNG or TIFF with its resolution, 1200 dpi recommended)")->required();
+  cmd->add_option("--joints", a->joints, "The joint file the plate was marked with (stiffpath run plate.gcode -o ...)")
+      ->required();
+  add_robot_flag(cmd, a->robot);
+  add_model_flags(cmd, a->model);
+  cmd->add_option("-o,--output", a->output, "The calibrated robot file to write (its model file beside it: <name>_model.json)")
+      ->check(output_name())
+      ->required();
+  cmd->add_option("--report-dir", a->report_dir, "Folder for calibration.json (default: <output>_report beside it)");
+  cmd->add_flag("--json", a->json, "Print the report as JSON");
+  cmd->callback([a] { within_resources(a->output, "calibrating from the scan", 0.0, [&] { fit(*a); }); });
+}
+
+}  // namespace stiffpath::cli
