@@ -2,6 +2,7 @@
 // compensation over matrices. Only the C MEX API (mex.h), so `mkoctfile --mex` and MATLAB's `mex` both build it.
 #include <mex.h>
 
+#include <array>
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -16,6 +17,7 @@
 #include "stiffpath/compliance/model_file.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/job/prepared_job.hpp"
+#include "stiffpath/job/joint_record.hpp"
 #include "stiffpath/job/joint_writer.hpp"
 #include "stiffpath/kinematics/robot.hpp"
 #include "stiffpath/measurement/displacement_table.hpp"
@@ -221,6 +223,19 @@ std::string text_field(const mxArray* options, const char* name, const std::stri
   return f == nullptr ? fallback : text_arg(f, (std::string("options.") + name).c_str());
 }
 
+// The joint-file fields (job::kJointFields, by CSV name) in the columns of 'compensate' and 'run', SI: 'compensate'
+// adds Δx Δy after its nine; 'run' gives the CSV's joint columns and the line.
+using stiffpath::job::joint_field;
+constexpr std::array<std::size_t, 9> kCompensateColumns{
+    joint_field("t_s"),           joint_field("theta1_rad"),    joint_field("theta2_rad"),
+    joint_field("omega1_rad_s"),  joint_field("omega2_rad_s"),  joint_field("alpha1_rad_s2"),
+    joint_field("alpha2_rad_s2"), joint_field("xcmd_mm"),       joint_field("ycmd_mm")};
+constexpr std::array<std::size_t, 10> kRunColumns{
+    joint_field("t_s"),           joint_field("theta1_rad"),    joint_field("theta2_rad"),
+    joint_field("omega1_rad_s"),  joint_field("omega2_rad_s"),  joint_field("alpha1_rad_s2"),
+    joint_field("alpha2_rad_s2"), joint_field("laser"),         joint_field("power"),
+    joint_field("line")};
+
 // Q = stiffpath('compensate', robot, model, T [, options]): T N×7..10 [t x y vx vy ax ay (jx jy laser)] →
 // N×11 [t θ1 θ2 ω1 ω2 α1 α2 x_cmd y_cmd Δx Δy] (SI), as `stiffpath run` with its defaults (dynamic compensation,
 // reference smoothed over 8 ms); the first refused row is an error. options: a struct with any of gain (1),
@@ -259,13 +274,16 @@ void compensate(int, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
   MatrixWriter writer;
   stiffpath::job::run(prepared, &writer);
   const std::size_t n = writer.commands.size();
-  plhs[0] = new_matrix(n, 11);
+  plhs[0] = new_matrix(n, kCompensateColumns.size() + 2);
   double* q = mxGetPr(plhs[0]);
   for (std::size_t i = 0; i < n; ++i) {
     const auto& c = writer.commands[i];
-    const double row[11] = {c.t_s, c.q_rad.x(), c.q_rad.y(), c.qd_rad_s.x(), c.qd_rad_s.y(), c.qdd_rad_s2.x(),
-                            c.qdd_rad_s2.y(), c.command_m.x(), c.command_m.y(), c.deflection_m.x(), c.deflection_m.y()};
-    for (std::size_t k = 0; k < 11; ++k) q[k * n + i] = row[k];
+    for (std::size_t k = 0; k < kCompensateColumns.size(); ++k) {
+      q[k * n + i] = stiffpath::job::value_of(c, stiffpath::job::kJointFields[kCompensateColumns[k]]);
+    }
+    const std::size_t d = kCompensateColumns.size();  // then the predicted deflection, which joint files do not hold
+    q[d * n + i] = c.deflection_m.x();
+    q[(d + 1) * n + i] = c.deflection_m.y();
   }
 }
 
@@ -304,13 +322,12 @@ void run(int, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
   MatrixWriter writer;
   stiffpath::job::run(prepared, &writer);
   const std::size_t n = writer.commands.size();
-  plhs[0] = new_matrix(n, 10);
+  plhs[0] = new_matrix(n, kRunColumns.size());
   double* q = mxGetPr(plhs[0]);
   for (std::size_t i = 0; i < n; ++i) {
-    const auto& c = writer.commands[i];
-    const double row[10] = {c.t_s, c.q_rad.x(), c.q_rad.y(), c.qd_rad_s.x(), c.qd_rad_s.y(), c.qdd_rad_s2.x(),
-                            c.qdd_rad_s2.y(), c.laser_on ? 1.0 : 0.0, c.power, static_cast<double>(c.line)};
-    for (std::size_t k = 0; k < 10; ++k) q[k * n + i] = row[k];
+    for (std::size_t k = 0; k < kRunColumns.size(); ++k) {
+      q[k * n + i] = stiffpath::job::value_of(writer.commands[i], stiffpath::job::kJointFields[kRunColumns[k]]);
+    }
   }
 }
 
