@@ -49,7 +49,8 @@ def from_octave(tmp_path, options):
         pytest.skip("the MATLAB/Octave gateway is not built here (STIFFPATH_MEX_DIR)")
     out = tmp_path / "octave.csv"
     script = (f"addpath('{mex_dir}'); J = stiffpath('run', '{JOB}', '{ROBOT}', struct({options})); "
-              f"f = fopen('{out}', 'w'); fprintf(f, '%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\\n', J'); "
+              "M = [J.t_s J.q_rad J.qd_rad_s J.qdd_rad_s2 double(J.laser) J.power J.line]; "
+              f"f = fopen('{out}', 'w'); fprintf(f, '%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\\n', M'); "
               "fclose(f);")
     subprocess.run([octave, "--no-gui", "--no-window-system", "--norc", "--quiet", "--eval", script], check=True)
     return np.loadtxt(out, delimiter=",")
