@@ -73,7 +73,7 @@ Errors: stiffpath:badInput (the message names the file, line and value), stiffpa
   The main job exactly as `stiffpath run` makes it (job::JobSpec: one set of defaults on every surface): plans,
   compensates every sample and returns the joint commands.
   J: struct of columns t_s, q_rad, qd_rad_s, qdd_rad_s2, target_m, command_m, force_N, deflection_m (N×2),
-  laser, outside_grid (logical), power, line. summary: as `run --json` in SI (model, method, gain, filters,
+  laser, outside_grid (logical), power, line (the joint file's fields, then deflection_m, outside_grid). summary: as `run --json` in SI (model, method, gain, filters,
   duration_s, samples, peak_deflection_m, peak_correction_m, peak_force_N, …).
   options: model (file or built-in name; default the robot's own), force_model, thesis (true: the thesis's
   method: bilinear model, quasi-static, no filter), compensate (false: the planned path as it is),

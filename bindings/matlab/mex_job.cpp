@@ -8,6 +8,7 @@
 #include "mex_commands.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/core/units.hpp"
+#include "stiffpath/job/joint_record.hpp"
 #include "stiffpath/job/joint_writer.hpp"
 #include "stiffpath/job/prepared_job.hpp"
 #include "stiffpath/motion/limits.hpp"
@@ -88,32 +89,36 @@ class Commands final : public job::JointWriter {
   std::vector<compensation::JointCommand> all;
 };
 
+// run's struct J: the joint file's fields (job::kJointFields), one struct field per member in the table's order (N×2
+// for a pair, logical for the laser, N×1 otherwise), then the deflection and the grid flag, which files do not hold.
 mxArray* joints_struct(const std::vector<compensation::JointCommand>& commands) {
   const std::size_t n = commands.size();
-  std::vector<double> t(n), power(n), line(n);
-  std::vector<Vec2> q(n), qd(n), qdd(n), target(n), command(n), force(n), deflection(n);
-  std::vector<bool> laser(n), outside(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto& c = commands[i];
-    t[i] = c.t_s;
-    q[i] = c.q_rad;
-    qd[i] = c.qd_rad_s;
-    qdd[i] = c.qdd_rad_s2;
-    target[i] = c.target_m;
-    command[i] = c.command_m;
-    force[i] = c.force_N;
-    deflection[i] = c.deflection_m;
-    laser[i] = c.laser_on;
-    power[i] = c.power;
-    outside[i] = c.outside_grid;
-    line[i] = c.line;
+  const auto& fields = job::kJointFields;
+  StructBuilder b;
+  for (std::size_t k = 0; k < fields.size(); ++k) {
+    const job::JointField& f = fields[k];
+    if (f.component != 0) continue;  // a pair's second column is filled with its first
+    const std::size_t cols = k + 1 < fields.size() && fields[k + 1].member == f.member ? 2 : 1;
+    if (f.csv_text == job::CsvText::flag) {
+      std::vector<bool> flags(n);
+      for (std::size_t i = 0; i < n; ++i) flags[i] = job::value_of(commands[i], f) != 0.0;
+      b.add(std::string(job::member_name(f.member)), logical_column(flags));
+      continue;
+    }
+    mxArray* a = mxCreateDoubleMatrix(n, cols, mxREAL);
+    double* out = mxGetPr(a);
+    for (std::size_t c = 0; c < cols; ++c) {
+      for (std::size_t i = 0; i < n; ++i) out[c * n + i] = job::value_of(commands[i], fields[k + c]);
+    }
+    b.add(std::string(job::member_name(f.member)), a);
   }
-  return StructBuilder()
-      .add("t_s", column(t)).add("q_rad", pairs(q)).add("qd_rad_s", pairs(qd)).add("qdd_rad_s2", pairs(qdd))
-      .add("target_m", pairs(target)).add("command_m", pairs(command)).add("force_N", pairs(force))
-      .add("deflection_m", pairs(deflection)).add("laser", logical_column(laser)).add("power", column(power))
-      .add("outside_grid", logical_column(outside)).add("line", column(line))
-      .build();
+  std::vector<Vec2> deflection(n);
+  std::vector<bool> outside(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    deflection[i] = commands[i].deflection_m;
+    outside[i] = commands[i].outside_grid;
+  }
+  return b.add("deflection_m", pairs(deflection)).add("outside_grid", logical_column(outside)).build();
 }
 
 // What `stiffpath run --json` reports, in SI.

@@ -3,6 +3,10 @@
 
 #include <fmt/format.h>
 
+#include <stdexcept>
+
+#include "stiffpath/job/joint_record.hpp"
+
 namespace stiffpath::python {
 
 py::array_t<double, py::array::c_style | py::array::forcecast> pairs(const py::handle& value, const char* what) {
@@ -112,19 +116,80 @@ motion::TrajectorySample to_sample(const TrajectoryRow& r) noexcept {
   return s;
 }
 
-JointRow to_row(const compensation::JointCommand& c) noexcept {
-  return {c.t_s,
-          {c.q_rad.x(), c.q_rad.y()},
-          {c.qd_rad_s.x(), c.qd_rad_s.y()},
-          {c.qdd_rad_s2.x(), c.qdd_rad_s2.y()},
-          {c.target_m.x(), c.target_m.y()},
-          {c.command_m.x(), c.command_m.y()},
-          {c.force_N.x(), c.force_N.y()},
-          {c.deflection_m.x(), c.deflection_m.y()},
-          c.laser_on,
-          c.power,
-          c.outside_grid,
-          static_cast<std::int32_t>(c.line)};
+namespace {
+
+// Where each field of the joint record (job::kJointFields) lives in a JointRow: its member of the same name. A member
+// added to the table without a case here is a -Wswitch warning and an error thrown on first use.
+template <class Row>  // JointRow or const JointRow
+auto& number_cell(Row& r, const job::JointField& f) {
+  switch (f.member) {
+    case job::JointMember::t_s: return r.t_s;
+    case job::JointMember::q_rad: return r.q_rad[f.component];
+    case job::JointMember::qd_rad_s: return r.qd_rad_s[f.component];
+    case job::JointMember::qdd_rad_s2: return r.qdd_rad_s2[f.component];
+    case job::JointMember::power: return r.power;
+    case job::JointMember::target_m: return r.target_m[f.component];
+    case job::JointMember::command_m: return r.command_m[f.component];
+    case job::JointMember::force_N: return r.force_N[f.component];
+    case job::JointMember::laser:
+    case job::JointMember::line: break;  // not doubles: below
+  }
+  throw std::logic_error(fmt::format("joints_dtype has no double member for joint field {}", f.csv_name));
+}
+
+void set_row(JointRow& r, const job::JointField& f, double v) {
+  if (f.member == job::JointMember::laser) {
+    r.laser = v != 0.0;
+  } else if (f.member == job::JointMember::line) {
+    r.line = static_cast<std::int32_t>(v);
+  } else {
+    number_cell(r, f) = v;
+  }
+}
+
+double row_value(const JointRow& r, const job::JointField& f) {
+  if (f.member == job::JointMember::laser) return r.laser ? 1.0 : 0.0;
+  if (f.member == job::JointMember::line) return r.line;
+  return number_cell(r, f);
+}
+
+}  // namespace
+
+JointRow to_row(const compensation::JointCommand& c) {
+  JointRow row{};
+  for (const auto& f : job::kJointFields) set_row(row, f, job::value_of(c, f));
+  // What a joint file does not hold: the predicted deflection and the grid flag.
+  row.deflection_m[0] = c.deflection_m.x();
+  row.deflection_m[1] = c.deflection_m.y();
+  row.outside_grid = c.outside_grid;
+  return row;
+}
+
+compensation::JointCommand to_command(const JointRow& row) {
+  compensation::JointCommand c;
+  for (const auto& f : job::kJointFields) job::set_value(c, f, row_value(row, f));
+  c.deflection_m = Vec2(row.deflection_m[0], row.deflection_m[1]);
+  c.outside_grid = row.outside_grid;
+  return c;
+}
+
+py::dtype joint_file_dtype() {
+  py::list names, formats, offsets;
+  for (const auto& f : job::kJointFields) {
+    names.append(py::str(std::string(f.si_name)));
+    formats.append(f.binary_type == job::BinaryType::f64 ? "<f8" : f.binary_type == job::BinaryType::i32 ? "<i4" : "u1");
+    offsets.append(f.offset_v2);
+  }
+  return py::dtype(names, formats, offsets, job::kBinaryRecordBytes);
+}
+
+py::tuple joint_file_fields() {
+  py::list out;
+  for (const auto& f : job::kJointFields) {
+    out.append(py::make_tuple(std::string(f.csv_name), std::string(f.si_name), std::string(job::member_name(f.member)),
+                              f.component, f.csv_per_si));
+  }
+  return py::tuple(out);
 }
 
 py::array RowWriter::array() const {

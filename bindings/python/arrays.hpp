@@ -71,9 +71,17 @@ struct JointRow {
   std::int32_t line;
 };
 
-//! A trajectory record as the planner's sample, and a joint command as a joint record.
+//! A trajectory record as the planner's sample; a joint command as a joint record and back (the joint file's fields
+//! through job::kJointFields, then the deflection and the grid flag, which files do not hold).
 motion::TrajectorySample to_sample(const TrajectoryRow& row) noexcept;
-JointRow to_row(const compensation::JointCommand& command) noexcept;
+JointRow to_row(const compensation::JointCommand& command);
+compensation::JointCommand to_command(const JointRow& row);
+
+//! stiffpath.joint_file_dtype: the binary joint file's version-2 record (job::kJointFields at their offsets), for
+//! np.fromfile(path, dtype=stiffpath.joint_file_dtype, offset=128). Needs NumPy.
+py::dtype joint_file_dtype();
+//! stiffpath.joint_file_fields: (csv_name, file_name, joints_field, component, csv_per_si) of every field.
+py::tuple joint_file_fields();
 
 //! A job's sink that keeps every command as a joint record (the joints array's records).
 class RowWriter final : public job::JointWriter {

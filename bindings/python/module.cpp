@@ -45,6 +45,7 @@ PYBIND11_MODULE(stiffpath, m) {
           return name == "trajectory_dtype" ? py::dtype::of<stiffpath::python::TrajectoryRow>()
                                             : py::dtype::of<stiffpath::python::JointRow>();
         }
+        if (name == "joint_file_dtype") return stiffpath::python::joint_file_dtype();
         if (name == "vision") {
           // The scan part is a module of its own (_stiffpath_vision, beside this one), built with OpenCV: imported
           // here, on first use, so that `import stiffpath` does not load OpenCV.
@@ -61,8 +62,9 @@ PYBIND11_MODULE(stiffpath, m) {
         }
         throw py::attribute_error("module 'stiffpath' has no attribute '" + name + "'");
       },
-      "trajectory_dtype and joints_dtype, made on first use, and vision, imported on first use (PEP 562).");
+      "trajectory_dtype, joints_dtype and joint_file_dtype, made on first use, and vision, imported on first use (PEP 562).");
 
+  m.attr("joint_file_fields") = stiffpath::python::joint_file_fields();
   stiffpath::python::add_kinematics(m);
   stiffpath::python::add_compliance(m);
   stiffpath::python::add_motion(m);

@@ -26,23 +26,6 @@ struct PySimulation {
   std::string refusal;  // why there are no metrics (the laser marked too little)
 };
 
-compensation::JointCommand to_command(const JointRow& r) {
-  compensation::JointCommand c;
-  c.t_s = r.t_s;
-  c.q_rad = Vec2(r.q_rad[0], r.q_rad[1]);
-  c.qd_rad_s = Vec2(r.qd_rad_s[0], r.qd_rad_s[1]);
-  c.qdd_rad_s2 = Vec2(r.qdd_rad_s2[0], r.qdd_rad_s2[1]);
-  c.target_m = Vec2(r.target_m[0], r.target_m[1]);
-  c.command_m = Vec2(r.command_m[0], r.command_m[1]);
-  c.force_N = Vec2(r.force_N[0], r.force_N[1]);
-  c.deflection_m = Vec2(r.deflection_m[0], r.deflection_m[1]);
-  c.laser_on = r.laser;
-  c.power = r.power;
-  c.outside_grid = r.outside_grid;
-  c.line = r.line;
-  return c;
-}
-
 // What `stiffpath simulate` does with its flags (twin_flags): C_true of the family, the loaded or ideal servo, the
 // CG lever unless turned off; then the job through the twin, each stroke measured as it ends.
 PySimulation simulate(const kinematics::Robot& robot, const py::handle& joints_in,

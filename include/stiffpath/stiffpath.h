@@ -107,7 +107,8 @@ typedef struct stiffpath_task_sample {
 } stiffpath_task_sample;
 
 /** The command for one sample. Joint values are meaningful only when status is STIFFPATH_OK; they
- *  are never NaN. */
+ *  are never NaN. Every field of a joint file (docs/compensation.md, "Output formats") is the member of the
+ *  same name here, in SI: t_s, q_rad, qd_rad_s, qdd_rad_s2, laser, power, target_m, command_m, force_N, line. */
 typedef struct stiffpath_joint_command {
   double t_s;
   double q_rad[2];          /**< θ1, θ2 = IK(p_cmd) */

@@ -23,18 +23,16 @@ T get(const char*& p) {
   return std::bit_cast<T>(bytes);
 }
 
-// What a joint record may hold: generous physical bounds, so that an absurd value (1e300) is refused
-// where it enters instead of overflowing the twin. Same order as the binary record's 13 doubles.
-constexpr double kMaxAbs[13] = {max_record_time_s, 1e3, 1e3, 1e6, 1e6, 1e9, 1e9, 1e3, 1e3, 1e3, 1e3, 1e9, 1e9};
-constexpr const char* kBinaryNames[13] = {"t_s",        "theta1_rad", "theta2_rad", "omega1_rad_s", "omega2_rad_s",
-                                          "alpha1_rad_s2", "alpha2_rad_s2", "x_m",  "y_m",          "xcmd_m",
-                                          "ycmd_m",     "fx_n",       "fy_n"};
+// The text of a value outside its field's bounds (`lo`, `hi` in the unit of `name`).
+std::string out_of_range(std::string_view name, double v, double lo, double hi) {
+  if (lo == -hi) return fmt::format("RANGE: {} = {:g} is beyond ±{:g}", name, v, hi);
+  return fmt::format("RANGE: {} = {:g} is outside [{:g}, {:g}]", name, v, lo, hi);
+}
 
-constexpr const char* kCsvColumns[13] = {"t_s",   "theta1_rad", "theta2_rad", "omega1_rad_s", "omega2_rad_s",
-                                         "laser", "x_mm",       "y_mm",       "xcmd_mm",      "ycmd_mm",
-                                         "fx_n",  "fy_n",       "line"};
-// Columns that files written before they existed lack: α1, α2 (zero) and power (the laser bit).
-constexpr const char* kOptionalCsvColumns[3] = {"alpha1_rad_s2", "alpha2_rad_s2", "power"};
+// What a reader takes for a field the file lacks: zero, or the laser bit (power of files before power was recorded).
+void set_absent(compensation::JointCommand& r, const JointField& f) {
+  set_value(r, f, f.if_absent == IfAbsent::laser_bit && r.laser_on ? 1.0 : 0.0);
+}
 }  // namespace
 
 JointReader::JointReader(const std::string& path) : path_(path), in_(path, std::ios::binary) {
@@ -74,8 +72,10 @@ JointReader::JointReader(const std::string& path) : path_(path), in_(path, std::
   in_.close();
   read_csv_comment(path);
   csv_ = std::make_unique<core::CsvReader>(path);
-  for (std::size_t i = 0; i < 13; ++i) columns_[i] = csv_->column(kCsvColumns[i]);
-  for (std::size_t i = 0; i < 3; ++i) optional_[i] = csv_->find_column(kOptionalCsvColumns[i]);
+  for (std::size_t i = 0; i < kJointFields.size(); ++i) {
+    const JointField& f = kJointFields[i];  // a column older files lack may be absent; every other is required
+    columns_[i] = f.if_absent == IfAbsent::refused ? csv_->column(f.csv_name) : csv_->find_column(f.csv_name);
+  }
 }
 
 // "# stiffpath joints rate_hz=… geometry_sha256=… robot=…" on the first line, if the file has it.
@@ -115,44 +115,32 @@ std::optional<compensation::JointCommand> JointReader::next() { return binary_ ?
 
 std::optional<compensation::JointCommand> JointReader::next_csv() {
   if (!csv_->next()) return std::nullopt;
-  const auto n = [&](int i) { return csv_->number(columns_[i]); };
   compensation::JointCommand r;
-  r.t_s = n(0);
-  r.q_rad = {n(1), n(2)};
-  r.qd_rad_s = {n(3), n(4)};
-  const long laser = csv_->integer(columns_[5]);
-  if (laser != 0 && laser != 1) csv_->fail(columns_[5], fmt::format("must be 0 or 1, got {}", laser));
-  r.laser_on = laser == 1;
-  r.target_m = Vec2(n(6), n(7)) * 1e-3;
-  r.command_m = Vec2(n(8), n(9)) * 1e-3;
-  r.force_N = {n(10), n(11)};
-  const long line = csv_->integer(columns_[12]);
-  if (line < 0 || line > 2'000'000'000L) csv_->fail(columns_[12], fmt::format("RANGE: line {} is not a G-code line number", line));
-  r.line = static_cast<int>(line);
-  constexpr int csv_fields[11] = {0, 1, 2, 3, 4, 6, 7, 8, 9, 10, 11};
-  const double csv_values[11] = {r.t_s, r.q_rad.x(), r.q_rad.y(), r.qd_rad_s.x(), r.qd_rad_s.y(), n(6), n(7), n(8), n(9),
-                                 r.force_N.x(), r.force_N.y()};
-  constexpr double csv_limits[11] = {max_record_time_s, 1e3, 1e3, 1e6, 1e6, 1e6, 1e6, 1e6, 1e6, 1e9, 1e9};
-  for (int k = 0; k < 11; ++k) {
-    if (std::abs(csv_values[k]) > csv_limits[k]) {
-      csv_->fail(columns_[csv_fields[k]], fmt::format("RANGE: {} = {:g} is beyond ±{:g}", kCsvColumns[csv_fields[k]],
-                                                      csv_values[k], csv_limits[k]));
-    }
+  for (std::size_t i = 0; i < kJointFields.size(); ++i) {
+    const JointField& f = kJointFields[i];
+    if (!columns_[i]) continue;
+    const std::size_t col = *columns_[i];
+    const double v = f.csv_text == CsvText::fixed ? csv_->number(col) : static_cast<double>(csv_->integer(col));
+    const double lo = f.min_si * f.csv_per_si, hi = f.max_si * f.csv_per_si;
+    if (f.csv_text == CsvText::flag && v != 0.0 && v != 1.0) csv_->fail(col, fmt::format("must be 0 or 1, got {}", v));
+    if (!(v >= lo && v <= hi)) csv_->fail(col, out_of_range(f.csv_name, v, lo, hi));
+    set_value(r, f, f.csv_per_si == 1.0 ? v : v * (1.0 / f.csv_per_si));
   }
+  for (std::size_t i = 0; i < kJointFields.size(); ++i) {
+    if (!columns_[i]) set_absent(r, kJointFields[i]);
+  }
+  const std::size_t t_column = *columns_[joint_field("t_s")];
   if (read_ > 0) {
     const double gap = r.t_s - last_t_;
     if (!(gap > 0.0)) {
-      csv_->fail(columns_[0], fmt::format("ORDER: time does not increase ({:g} s after {:g} s)", r.t_s, last_t_));
+      csv_->fail(t_column, fmt::format("ORDER: time does not increase ({:g} s after {:g} s)", r.t_s, last_t_));
     }
     if (gap > max_record_gap_s) {
-      csv_->fail(columns_[0], fmt::format("RANGE: t_s = {:g} s is {:g} s after the previous record, more than the {:g} s "
+      csv_->fail(t_column, fmt::format("RANGE: t_s = {:g} s is {:g} s after the previous record, more than the {:g} s "
                                           "a joint file may leave between records",
                                           r.t_s, gap, max_record_gap_s));
     }
   }
-  if (optional_[0] && optional_[1]) r.qdd_rad_s2 = {csv_->number(*optional_[0]), csv_->number(*optional_[1])};
-  r.power = optional_[2] ? csv_->number(*optional_[2]) : (r.laser_on ? 1.0 : 0.0);
-  if (!(r.power >= 0.0 && r.power <= 1.0)) csv_->fail(*optional_[2], fmt::format("RANGE: power must be within [0, 1], got {}", r.power));
   last_t_ = r.t_s;
   if (read_ == 0) first_t_ = r.t_s;
   if (read_ == 1 && r.t_s > first_t_) rate_hz_ = 1.0 / (r.t_s - first_t_);
@@ -174,41 +162,33 @@ std::optional<compensation::JointCommand> JointReader::next_binary() {
     throw Error(SourceLocation{path_}, fmt::format("record {} is truncated ({} of {} bytes)", read_ + 1, got,
                                                    record_bytes_));
   }
-  const char* p = record.data();
-  compensation::JointCommand r;
-  double v[14] = {};
-  const int doubles = version_ == 1 ? 13 : 14;  // version 2 adds the power
-  for (int i = 0; i < doubles; ++i) v[i] = get<double>(p);
   const std::uint64_t header_bytes = version_ == 1 ? kBinaryV1HeaderBytes : kBinaryHeaderBytes;
   const auto fail = [&](const std::string& why) {
     throw Error(SourceLocation{path_}, fmt::format("record {} (byte {}): {}", read_ + 1,
                                                    header_bytes + read_ * record_bytes_, why));
   };
-  if (!std::isfinite(v[13])) fail(fmt::format("RANGE: power is not finite ({})", v[13]));
-  for (int k = 0; k < 13; ++k) {
-    if (!std::isfinite(v[k])) fail(fmt::format("RANGE: {} is not finite ({})", kBinaryNames[k], v[k]));
-    if (std::abs(v[k]) > kMaxAbs[k]) fail(fmt::format("RANGE: {} = {:g} is beyond ±{:g}", kBinaryNames[k], v[k], kMaxAbs[k]));
+  compensation::JointCommand r;
+  for (const JointField& f : kJointFields) {
+    const int at = version_ == 1 ? f.offset_v1 : f.offset_v2;
+    if (at < 0) continue;
+    const char* p = record.data() + at;
+    const double v = f.binary_type == BinaryType::f64 ? get<double>(p)
+                     : f.binary_type == BinaryType::i32 ? static_cast<double>(get<std::int32_t>(p))
+                                                        : static_cast<double>(get<std::uint8_t>(p));
+    if (!std::isfinite(v)) fail(fmt::format("RANGE: {} is not finite ({})", f.si_name, v));
+    if (!(v >= f.min_si && v <= f.max_si)) fail(out_of_range(f.si_name, v, f.min_si, f.max_si));
+    set_value(r, f, v);
   }
-  if (read_ > 0 && !(v[0] > last_t_)) fail(fmt::format("ORDER: time does not increase ({:g} s after {:g} s)", v[0], last_t_));
-  if (read_ > 0 && v[0] - last_t_ > max_record_gap_s) {
+  for (const JointField& f : kJointFields) {
+    if ((version_ == 1 ? f.offset_v1 : f.offset_v2) < 0) set_absent(r, f);
+  }
+  if (read_ > 0 && !(r.t_s > last_t_)) fail(fmt::format("ORDER: time does not increase ({:g} s after {:g} s)", r.t_s, last_t_));
+  if (read_ > 0 && r.t_s - last_t_ > max_record_gap_s) {
     fail(fmt::format("RANGE: t_s = {:g} s is {:g} s after the previous record, more than the {:g} s a joint file may leave "
                      "between records",
-                     v[0], v[0] - last_t_, max_record_gap_s));
+                     r.t_s, r.t_s - last_t_, max_record_gap_s));
   }
-  last_t_ = v[0];
-  r.t_s = v[0];
-  r.q_rad = {v[1], v[2]};
-  r.qd_rad_s = {v[3], v[4]};
-  r.qdd_rad_s2 = {v[5], v[6]};
-  r.target_m = {v[7], v[8]};
-  r.command_m = {v[9], v[10]};
-  r.force_N = {v[11], v[12]};
-  r.line = get<std::int32_t>(p);
-  r.laser_on = get<std::uint8_t>(p) != 0;
-  r.power = version_ == 1 ? (r.laser_on ? 1.0 : 0.0) : v[13];
-  if (!(r.power >= 0.0 && r.power <= 1.0)) {
-    fail(fmt::format("RANGE: power = {:g} is outside [0, 1]", r.power));
-  }
+  last_t_ = r.t_s;
   ++read_;
   return r;
 }

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <utility>
 #include <vector>
 
 #include "stiffpath/core/atomic_file.hpp"
@@ -37,30 +38,7 @@ class CsvWriter final : public JointWriter {
     file_.stream().write(header.data(), static_cast<std::streamsize>(header.size()));
   }
   void write(const JointCommand& c) override {
-    char* p = buffer_.data() + used_;
-    p = write_fixed(p, c.t_s, kCsvTimeDecimals);
-    for (double v : {c.q_rad.x(), c.q_rad.y(), c.qd_rad_s.x(), c.qd_rad_s.y()}) {
-      *p++ = ',';
-      p = write_fixed(p, v, kCsvAngleDecimals);
-    }
-    for (double v : {c.qdd_rad_s2.x(), c.qdd_rad_s2.y()}) {
-      *p++ = ',';
-      p = write_fixed(p, v, kCsvAccelerationDecimals);
-    }
-    *p++ = ',';
-    *p++ = c.laser_on ? '1' : '0';
-    *p++ = ',';
-    p = write_fixed(p, c.power, kCsvPowerDecimals);
-    for (double v : {c.target_m.x(), c.target_m.y(), c.command_m.x(), c.command_m.y()}) {
-      *p++ = ',';
-      p = write_fixed(p, v * 1e3, kCsvMillimetreDecimals);
-    }
-    for (double v : {c.force_N.x(), c.force_N.y()}) {
-      *p++ = ',';
-      p = write_fixed(p, v, kCsvForceDecimals);
-    }
-    *p++ = ',';
-    p = std::to_chars(p, p + 12, c.line).ptr;
+    char* p = write_row(buffer_.data() + used_, c, std::make_index_sequence<kJointFields.size()>{});
     *p++ = '\n';
     used_ = static_cast<std::size_t>(p - buffer_.data());
     if (used_ >= kFlushBytes) flush();
@@ -71,7 +49,29 @@ class CsvWriter final : public JointWriter {
   }
 
  private:
-  static constexpr std::size_t kMaxRowChars = 16 * (kMaxFixedChars + 1) + 2;  // 16 cells, separators, newline
+  static constexpr std::size_t kMaxRowChars = kJointFields.size() * (kMaxFixedChars + 1) + 2;  // cells, separators, newline
+  // One cell per field, unrolled at compile time so that each field's accessor and format fold into straight code.
+  template <std::size_t... I>
+  static char* write_row(char* p, const JointCommand& c, std::index_sequence<I...>) {
+    ((p = write_cell<I>(p, c)), ...);
+    return p;
+  }
+  template <std::size_t I>
+  static char* write_cell(char* p, const JointCommand& c) {
+    constexpr JointField f = kJointFields[I];
+    if constexpr (I > 0) *p++ = ',';
+    const double v = value_of(c, f);
+    if constexpr (f.csv_text == CsvText::flag) {
+      *p++ = v != 0.0 ? '1' : '0';
+      return p;
+    } else if constexpr (f.csv_text == CsvText::integer) {
+      return std::to_chars(p, p + 12, static_cast<int>(v)).ptr;
+    } else if constexpr (f.csv_per_si != 1.0) {
+      return write_fixed(p, v * f.csv_per_si, f.csv_decimals);
+    } else {
+      return write_fixed(p, v, f.csv_decimals);
+    }
+  }
   void flush() {
     file_.stream().write(buffer_.data(), static_cast<std::streamsize>(used_));
     used_ = 0;
@@ -103,15 +103,9 @@ class BinaryWriter final : public JointWriter {
   }
   void write(const JointCommand& c) override {
     if (used_ == buffer_.size()) flush();
-    char* p = buffer_.data() + used_;
-    for (double v : {c.t_s, c.q_rad.x(), c.q_rad.y(), c.qd_rad_s.x(), c.qd_rad_s.y(), c.qdd_rad_s2.x(),
-                     c.qdd_rad_s2.y(), c.target_m.x(), c.target_m.y(), c.command_m.x(), c.command_m.y(),
-                     c.force_N.x(), c.force_N.y(), c.power}) {
-      put(p, v);
-    }
-    put(p, static_cast<std::int32_t>(c.line));
-    put(p, static_cast<std::uint8_t>(c.laser_on ? 1 : 0));
-    std::memset(p, 0, 3);  // padding
+    char* record = buffer_.data() + used_;
+    put_fields(record, c, std::make_index_sequence<kJointFields.size()>{});
+    std::memset(record + kBinaryRecordFieldBytes, 0, kBinaryRecordBytes - kBinaryRecordFieldBytes);  // padding
     used_ += kBinaryRecordBytes;
     ++count_;
   }
@@ -126,6 +120,19 @@ class BinaryWriter final : public JointWriter {
 
  private:
   static constexpr std::size_t kBufferRecords = kFlushBytes / kBinaryRecordBytes;
+  template <std::size_t... I>
+  static void put_fields(char* record, const JointCommand& c, std::index_sequence<I...>) {
+    (put_field<I>(record, c), ...);
+  }
+  template <std::size_t I>
+  static void put_field(char* record, const JointCommand& c) {
+    constexpr JointField f = kJointFields[I];
+    char* p = record + f.offset_v2;
+    const double v = value_of(c, f);
+    if constexpr (f.binary_type == BinaryType::f64) put(p, v);
+    if constexpr (f.binary_type == BinaryType::i32) put(p, static_cast<std::int32_t>(v));
+    if constexpr (f.binary_type == BinaryType::u8) put(p, static_cast<std::uint8_t>(v != 0.0 ? 1 : 0));
+  }
   static void header_into(std::array<char, kBinaryHeaderBytes>& h, double rate_hz, const JointFileRobot& robot,
                           std::uint64_t count) {
     char* p = h.data();

@@ -1,13 +1,16 @@
 // Round trips of the joint-file writers and reader (CSV, binary), fixed-point formatting, and corrupt files.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <filesystem>
+#include <fmt/format.h>
 #include <fstream>
 #include <random>
 #include <sstream>
 
 #include "cli_runner.hpp"
 #include "stiffpath/job/joint_reader.hpp"
+#include "stiffpath/job/joint_record.hpp"
 #include "stiffpath/job/joint_writer.hpp"
 #include "stiffpath/core/error.hpp"
 
@@ -285,6 +288,105 @@ TEST(JointFiles, OlderCsvFilesStillRead) {
   EXPECT_EQ(b->power, 0.0);
   EXPECT_EQ(a->qdd_rad_s2, Vec2::Zero());
   EXPECT_FALSE(reader.next());
+}
+
+// The binary record as docs/compensation.md lays it out, decoded here at literal offsets (not through the field
+// table): the table must reproduce the version-2 format byte for byte, and the CSV header its documented text.
+TEST(JointFiles, BinaryRecordHasTheDocumentedLayout) {
+  EXPECT_STREQ(kJointCsvHeader,
+               "t_s,theta1_rad,theta2_rad,omega1_rad_s,omega2_rad_s,alpha1_rad_s2,alpha2_rad_s2,laser,power,x_mm,y_mm,"
+               "xcmd_mm,ycmd_mm,fx_n,fy_n,line");
+  EXPECT_EQ(kBinaryRecordBytes, 120U);
+  EXPECT_EQ(kBinaryV1RecordBytes, 112U);
+  JointCommand c;
+  c.t_s = 1.5;
+  c.q_rad = {0.25, -0.5};
+  c.qd_rad_s = {3.0, -4.0};
+  c.qdd_rad_s2 = {50.0, -60.0};
+  c.target_m = {0.2, 0.03};
+  c.command_m = {0.2001, 0.0299};
+  c.force_N = {-170.0, 85.0};
+  c.power = 0.75;
+  c.laser_on = true;
+  c.line = 123456;
+  test::TempDir dir;
+  const auto path = (dir / "one.bin").string();
+  auto writer = make_joint_writer(OutputFormat::binary, path, 2000.0, {"oc-gu", ""});
+  writer->write(c);
+  writer->finish();
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_EQ(bytes.size(), 128U + 120U);
+  const char* record = bytes.data() + 128;
+  const auto f64 = [&](int at) {
+    double v;
+    std::memcpy(&v, record + at, 8);
+    return v;
+  };
+  const double doubles[14] = {1.5, 0.25, -0.5, 3.0, -4.0, 50.0, -60.0, 0.2, 0.03, 0.2001, 0.0299, -170.0, 85.0, 0.75};
+  for (int k = 0; k < 14; ++k) EXPECT_EQ(f64(8 * k), doubles[k]) << "double " << k;
+  std::int32_t line;
+  std::memcpy(&line, record + 112, 4);
+  EXPECT_EQ(line, 123456);
+  EXPECT_EQ(record[116], 1);
+  EXPECT_EQ(std::string(record + 117, 3), std::string(3, '\0'));
+}
+
+// docs/compensation.md lists every field of the record, one table row each, as the field table has it; a field added to
+// the table fails here until the user documentation has its row.
+TEST(JointFiles, DocumentedFieldsAreTheTable) {
+  std::ifstream in(std::string(STIFFPATH_SOURCE_DIR) + "/docs/compensation.md");
+  const std::string doc((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_FALSE(doc.empty());
+  EXPECT_NE(doc.find(std::string("\n") + kJointCsvHeader + "\n"), std::string::npos) << "the header line";
+  const std::size_t from = doc.find("| CSV column | CSV | binary name |");
+  ASSERT_NE(from, std::string::npos) << "the record's field table";
+  const std::string section = doc.substr(from, doc.find("\n\n", from) - from);
+  std::size_t rows = 0;
+  for (std::size_t at = section.find("\n| `"); at != std::string::npos; at = section.find("\n| `", at + 1)) ++rows;
+  for (const JointField& f : kJointFields) {
+    const std::string text = f.csv_text == CsvText::flag      ? "0/1"
+                             : f.csv_text == CsvText::integer ? "int"
+                                                              : std::to_string(f.csv_decimals);
+    const std::string type = f.binary_type == BinaryType::f64 ? "f64" : f.binary_type == BinaryType::i32 ? "i32" : "u8";
+    const std::string range = f.min_si == -f.max_si ? fmt::format("±{:g}", f.max_si)
+                                                    : fmt::format("[{:g}, {:g}]", f.min_si, f.max_si);
+    const std::string absent = f.if_absent == IfAbsent::zero ? "zero" : f.if_absent == IfAbsent::laser_bit ? "laser bit" : "refused";
+    const std::string row = fmt::format("| `{}` | {} | `{}` | {} | {} | {} | {} | {} |", f.csv_name, text, f.si_name, type,
+                                        f.offset_v2, f.offset_v1 < 0 ? "-" : std::to_string(f.offset_v1), range, absent);
+    EXPECT_NE(section.find(row), std::string::npos) << "docs/compensation.md's field table lacks the row\n" << row;
+  }
+  EXPECT_EQ(rows, kJointFields.size()) << "rows of docs/compensation.md's field table";
+}
+
+// Every bounded field is refused beyond its bounds by both readers, the message naming the field in the file's unit
+// (α was not range-checked in CSV, nor the line in binary files, before the readers followed the table).
+TEST(JointFiles, EveryFieldIsCheckedAgainstItsBoundsInBothFormats) {
+  test::TempDir dir;
+  for (const JointField& f : kJointFields) {
+    if (f.csv_text == CsvText::flag) continue;  // a bool cannot be written out of range (see CorruptFilesAre...)
+    for (const auto format : {OutputFormat::csv, OutputFormat::binary}) {
+      auto in = commands(2);
+      const double beyond = f.max_si == 0.0 ? 1.0 : f.max_si * 1.5;
+      if (f.member == JointMember::t_s) {
+        in[0].t_s = -beyond;  // the second must follow the first in time
+      } else {
+        set_value(in[0], f, beyond);
+      }
+      const auto path = (dir / (std::string(f.csv_name) + (format == OutputFormat::csv ? ".csv" : ".bin"))).string();
+      auto writer = make_joint_writer(format, path, 2000.0, {"oc-gu", ""});
+      for (const auto& c : in) writer->write(c);
+      writer->finish();
+      JointReader reader(path);
+      try {
+        (void)reader.next();
+        ADD_FAILURE() << f.csv_name << " = " << beyond << " was read";
+      } catch (const Error& e) {
+        const std::string name(format == OutputFormat::csv ? f.csv_name : f.si_name);
+        EXPECT_NE(std::string(e.what()).find("RANGE: " + name + " = "), std::string::npos) << e.what();
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -4,9 +4,13 @@
 #include <ostream>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "stiffpath/compensation/compensator.hpp"
 #include "stiffpath/compliance/model_factory.hpp"
+#include "stiffpath/job/joint_record.hpp"
+#include "stiffpath/job/joint_writer.hpp"
+#include "stiffpath/job/prepared_job.hpp"
 #include "stiffpath/kinematics/robot.hpp"
 #include "stiffpath/stiffpath.h"
 
@@ -132,6 +136,64 @@ TEST(CApiKinematics, ForwardAndInverseEqualTheLibrarys) {
   }
   EXPECT_GT(unreachable, 1000);
   stiffpath_robot_free(robot);
+}
+
+// Where each field of the joint record (job::kJointFields) lives in stiffpath_joint_command: its member of the same
+// name. A member added to the table without a case here is a -Wswitch warning and a failure below.
+bool c_value(const stiffpath_joint_command& c, const job::JointField& f, double& v) {
+  const int k = f.component;
+  switch (f.member) {
+    case job::JointMember::t_s: v = c.t_s; return true;
+    case job::JointMember::q_rad: v = c.q_rad[k]; return true;
+    case job::JointMember::qd_rad_s: v = c.qd_rad_s[k]; return true;
+    case job::JointMember::qdd_rad_s2: v = c.qdd_rad_s2[k]; return true;
+    case job::JointMember::laser: v = c.laser; return true;
+    case job::JointMember::power: v = c.power; return true;
+    case job::JointMember::target_m: v = c.target_m[k]; return true;
+    case job::JointMember::command_m: v = c.command_m[k]; return true;
+    case job::JointMember::force_N: v = c.force_N[k]; return true;
+    case job::JointMember::line: v = c.line; return true;
+  }
+  return false;
+}
+
+class Keep final : public job::JointWriter {
+ public:
+  void write(const compensation::JointCommand& c) override { commands.push_back(c); }
+  void finish() override {}
+  std::vector<compensation::JointCommand> commands;
+};
+
+// The C interface's job hands over every field a joint file holds, with the library's job's values (the same
+// JobSpec: the thesis's method on oc-gu): the C struct is checked against the field table, not a copy of it.
+TEST(CApiJob, EveryJointFileFieldIsAMemberOfTheCommand) {
+  const std::string gcode = std::string(STIFFPATH_TEST_DATA_DIR) + "/../../examples/triangle.gcode";
+  stiffpath_job_options options = stiffpath_default_job_options();
+  options.thesis = 1;
+  std::vector<stiffpath_joint_command> from_c;
+  const auto sink = [](const stiffpath_joint_command* c, void* user) {
+    static_cast<std::vector<stiffpath_joint_command>*>(user)->push_back(*c);
+    return 0;
+  };
+  char error[512];
+  ASSERT_EQ(stiffpath_run_job("oc-gu", nullptr, gcode.c_str(), &options, sink, &from_c, error, sizeof error), STIFFPATH_OK)
+      << error;
+  const auto robot = kinematics::load_robot("oc-gu");
+  job::JobSpec spec = job::thesis_job(robot);
+  Keep library;
+  job::run(job::prepare(std::move(spec), job::Program::file(gcode)), &library);
+  ASSERT_EQ(from_c.size(), library.commands.size());
+  ASSERT_GT(from_c.size(), 100U);
+  int laser_on = 0;
+  for (std::size_t i = 0; i < from_c.size(); ++i) {
+    laser_on += from_c[i].laser;
+    for (const auto& f : job::kJointFields) {
+      double v = 0.0;
+      ASSERT_TRUE(c_value(from_c[i], f, v)) << "stiffpath_joint_command has no member for " << f.csv_name;
+      ASSERT_EQ(v, job::value_of(library.commands[i], f)) << f.csv_name << " of command " << i;
+    }
+  }
+  EXPECT_GT(laser_on, 0);  // the laser and power fields were exercised
 }
 
 }  // namespace

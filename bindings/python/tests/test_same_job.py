@@ -86,3 +86,33 @@ def test_without_compensation_is_the_planned_path_as_it_is(tmp_path):
     assert len(joints) == len(plan)
     np.testing.assert_array_equal(joints["target_m"], plan["p_m"])
     np.testing.assert_array_equal(joints["command_m"], plan["p_m"])
+
+
+def test_every_joint_file_field_is_in_the_dtypes(cli, tmp_path):
+    """stiffpath.joint_file_dtype (made from the field table) decodes the CLI's binary file as the layout above does, and
+    every field of stiffpath.joint_file_fields is in joints_dtype under its name, with the CLI's value."""
+    out = tmp_path / "cli.bin"
+    cli("run", JOB, "--robot", ROBOT, "--format", "bin", "-o", out)
+    independent = np.fromfile(out, dtype=RECORD, offset=128)
+    records = np.fromfile(out, dtype=stiffpath.joint_file_dtype, offset=128)
+    assert stiffpath.joint_file_dtype.itemsize == RECORD.itemsize == 120
+    by_layout = {"t_s": independent["t_s"], "power": independent["power"], "line": independent["line"],
+                 "laser": independent["laser"]}
+    for pair, names in (("q", ("theta1_rad", "theta2_rad")), ("qd", ("omega1_rad_s", "omega2_rad_s")),
+                        ("qdd", ("alpha1_rad_s2", "alpha2_rad_s2")), ("p", ("x_m", "y_m")),
+                        ("p_cmd", ("xcmd_m", "ycmd_m")), ("F", ("fx_n", "fy_n"))):
+        for k, name in enumerate(names):
+            by_layout[name] = independent[pair][:, k]
+    assert set(records.dtype.names) == set(by_layout)
+    for name, column in by_layout.items():
+        np.testing.assert_array_equal(records[name], column, err_msg=name)
+    assert records["laser"].sum() > 0 and np.ptp(records["power"]) > 0  # laser and power were exercised
+    joints, _ = stiffpath.run(file=JOB, robot=ROBOT)
+    assert len(joints) == len(records)
+    names = [field[0] for field in stiffpath.joint_file_fields]
+    csv = tmp_path / "cli.csv"
+    cli("run", JOB, "--robot", ROBOT, "-o", csv)
+    assert csv.read_text().splitlines()[1] == ",".join(names)
+    for csv_name, file_name, member, component, csv_per_si in stiffpath.joint_file_fields:
+        column = joints[member] if joints[member].ndim == 1 else joints[member][:, component]
+        np.testing.assert_array_equal(column, records[file_name], err_msg=f"joints_dtype's {member} for {csv_name}")

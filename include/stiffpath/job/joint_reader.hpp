@@ -1,6 +1,7 @@
 // Reading joint trajectories written by `stiffpath run` (CSV or the binary format), streaming.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <fstream>
 #include <memory>
@@ -9,6 +10,7 @@
 
 #include "stiffpath/compensation/samples.hpp"
 #include "stiffpath/core/csv.hpp"
+#include "stiffpath/job/joint_record.hpp"
 
 namespace stiffpath::job {
 
@@ -17,15 +19,13 @@ using compensation::Vec2;
 //! Largest time between two records of a joint file (s): `run` writes at 1 Hz or faster, and the twin
 //! steps every interval at its own rate, so a larger gap is refused where it is read.
 inline constexpr double max_record_gap_s = 10.0;
-//! Largest |t_s| of a record (s): 10^7 s, about 116 days.
-inline constexpr double max_record_time_s = 1e7;
 
 //! Reads a joint file sample by sample, as the JointCommands that were written (status ok; the
 //! predicted deflection is not stored). The format is recognised by the binary magic; binary
 //! versions 1 and 2 are read, and CSV files written before α and power were recorded (α zero,
 //! power 1 while the laser is on). Every bad value is an error naming the file and the line and
 //! column (CSV) or the record number and byte offset (binary). Times must increase, by at most
-//! max_record_gap_s; every value is finite and within generous physical bounds.
+//! max_record_gap_s; every value is finite and within its field's bounds (kJointFields).
 class JointReader {
  public:
   explicit JointReader(const std::string& path);
@@ -54,8 +54,7 @@ class JointReader {
   bool binary_ = false;
   std::ifstream in_;
   std::unique_ptr<core::CsvReader> csv_;
-  std::size_t columns_[13] = {};
-  std::optional<std::size_t> optional_[3];
+  std::array<std::optional<std::size_t>, kJointFields.size()> columns_;  // CSV column of each field, if present
   std::uint32_t version_ = 0, record_bytes_ = 0;
   std::uint64_t expected_ = 0, read_ = 0;
   double rate_hz_ = 0.0, first_t_ = 0.0, last_t_ = 0.0;

@@ -7,6 +7,7 @@
 
 #include "stiffpath/compensation/samples.hpp"
 #include "stiffpath/core/enum_names.hpp"
+#include "stiffpath/job/joint_record.hpp"
 
 namespace stiffpath::job {
 
@@ -20,30 +21,20 @@ enum class OutputFormat : std::uint8_t { csv, binary };
 //! First line of a joint CSV, a comment recording how it was made, followed by
 //! " rate_hz=<Hz> geometry_sha256=<hex, or - when unknown> robot=<name to the end of the line>".
 inline constexpr const char* kJointCsvComment = "# stiffpath joints";
-//! CSV header of the joint trajectory (units in the names), the line after the comment.
-inline constexpr const char* kJointCsvHeader =
-    "t_s,theta1_rad,theta2_rad,omega1_rad_s,omega2_rad_s,alpha1_rad_s2,alpha2_rad_s2,laser,power,x_mm,y_mm,"
-    "xcmd_mm,ycmd_mm,fx_n,fy_n,line";
-
-//! Decimals of the CSV columns: t 6 (1 µs), θ 9 (1 nrad), ω 9, α 6, power 6, positions 6 (1 nm),
-//! forces 4 (0.1 mN); every number is the value correctly rounded to them (std::to_chars).
-inline constexpr int kCsvTimeDecimals = 6, kCsvAngleDecimals = 9, kCsvAccelerationDecimals = 6,
-                     kCsvPowerDecimals = 6, kCsvMillimetreDecimals = 6, kCsvForceDecimals = 4;
+//! The CSV header (kJointCsvHeader), its numbers' decimals and the binary record are those of
+//! kJointFields (joint_record.hpp).
 
 //! Binary format (docs/compensation.md): a 128-byte header, then one 120-byte record per sample,
 //! all little-endian.
 //!   header: char[8] magic "SPJOINT\0", u32 version = 2, u32 record_bytes = 120, f64 rate_hz,
 //!           u64 sample_count, char[32] robot name (NUL-padded), char[64] robot geometry SHA-256
 //!           (lower-case hex, NUL-filled when unknown)
-//!   record: f64 t_s, θ1, θ2 (rad), ω1, ω2 (rad/s), α1, α2 (rad/s²), x, y, x_cmd, y_cmd (m),
-//!           Fx, Fy (N), power (0..1); i32 line; u8 laser; 3 bytes of zero padding
+//!   record: kJointFields at their offset_v2, then zero padding to kBinaryRecordBytes
 //! Version 1 (64-byte header without the geometry, 112-byte records without power) is still read.
 inline constexpr char kBinaryMagic[8] = {'S', 'P', 'J', 'O', 'I', 'N', 'T', '\0'};
 inline constexpr std::uint32_t kBinaryVersion = 2;
 inline constexpr std::uint32_t kBinaryHeaderBytes = 128;
-inline constexpr std::uint32_t kBinaryRecordBytes = 120;
 inline constexpr std::uint32_t kBinaryV1HeaderBytes = 64;
-inline constexpr std::uint32_t kBinaryV1RecordBytes = 112;
 
 //! The robot a joint file is written for: its name and geometry hash (kinematics::Robot::geometry_hash).
 struct JointFileRobot {
