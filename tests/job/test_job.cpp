@@ -33,9 +33,10 @@ std::string hatch(int lines, int at = -1, const std::string& extra = "") {
 }
 
 Compensator compensator() {
+  CompensatorOptions quasi;
+  quasi.method = Method::quasi_static;
   return Compensator(kinematics::load_robot("oc-gu"),
-                     std::shared_ptr<const compliance::Model>(compliance::load_model("thesis-oc").model.release()),
-                     {.method = Method::quasi_static});
+                     std::shared_ptr<const compliance::Model>(compliance::load_model("thesis-oc").model.release()), quasi);
 }
 
 std::string read_bytes(const std::filesystem::path& path) {

@@ -265,10 +265,14 @@ TEST(TaskSourcePath, PowerFollowsTheFilteredSpeed) {
           const double d = (p.position_m - corners[c]).norm();
           near_corner |= d < 1e-9;
           standing[c] += d < 1e-12 && v < 1e-12;  // at rest there, to rounding
-          if (d < 1e-12 && v < 1e-12) EXPECT_EQ(p.power, 0.0) << mode << " " << describe(setup);
+          if (d < 1e-12 && v < 1e-12) {
+            EXPECT_EQ(p.power, 0.0) << mode << " " << describe(setup);
+          }
         }
         // Within a nanometre of a corner it may count as standing (power 0) or as moving.
-        if (!near_corner || p.power != 0.0) EXPECT_NEAR(p.power, moving, 1e-12) << mode << " " << describe(setup) << " v " << v;
+        if (!near_corner || p.power != 0.0) {
+          EXPECT_NEAR(p.power, moving, 1e-12) << mode << " " << describe(setup) << " v " << v;
+        }
       }
       EXPECT_GT(standing[0], 0u) << mode;
       EXPECT_GT(standing[1], 0u) << mode;
