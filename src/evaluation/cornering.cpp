@@ -8,17 +8,11 @@
 #include <numbers>
 
 #include "stiffpath/core/error.hpp"
+#include "stiffpath/evaluation/segment_distance.hpp"
 
 namespace stiffpath::evaluation {
 
 namespace {
-
-double segment_distance(const Point2& p, const Point2& a, const Point2& b) {
-  const Point2 ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double s = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (a + s * ab - p).norm();
-}
 
 void require_finite(std::span<const Point2> points, const char* what) {
   for (std::size_t i = 0; i < points.size(); ++i) {

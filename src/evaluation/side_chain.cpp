@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "stiffpath/core/error.hpp"
+#include "stiffpath/evaluation/segment_distance.hpp"
 #include "stiffpath/evaluation/vertex_finder.hpp"
 
 namespace stiffpath::evaluation {
@@ -15,13 +16,6 @@ namespace stiffpath::evaluation {
 namespace {
 
 const std::optional<Point2> kNone;  // no junction: a free end
-
-double segment_distance(const Point2& p, const Point2& a, const Point2& b) {
-  const Point2 ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double s = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (a + s * ab - p).norm();
-}
 
 // Distance from p to the polyline through `points` (to its point when it has one).
 double polyline_distance(const Point2& p, const std::vector<Point2>& points) {

@@ -6,17 +6,11 @@
 #include <fmt/format.h>
 
 #include "stiffpath/core/error.hpp"
+#include "stiffpath/evaluation/segment_distance.hpp"
 
 namespace stiffpath::evaluation {
 
 namespace {
-
-double segment_distance(const Point2& p, const Point2& a, const Point2& b) {
-  const Point2 ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double s = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (a + s * ab - p).norm();
-}
 
 // Ramer–Douglas–Peucker over pts[first..last] (exclusive of both ends), appending kept points in order.
 void rdp(const std::vector<Vertex>& pts, std::size_t first, std::size_t last, double tol, std::vector<Vertex>& out) {

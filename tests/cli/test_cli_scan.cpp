@@ -253,10 +253,9 @@ TEST(CliScan, TheTwinsUncompensatedTriangleScansToItsTruth) {
   ASSERT_EQ(run_cli("run '" + gcode + "' --accel 5g --no-compensation -o j.csv", dir.path()).exit_code, 0);
   // The matched twin (the mark this check was built on): the honest twin's uncompensated corners overshoot
   // 0.5 mm and fold back onto the side, which the scan refuses at the default 1 mm corner trim.
-  ASSERT_EQ(run_cli("simulate j.csv --sides 3 --marks-csv marks.csv --truth physical --servo ideal --no-cg-lever",
-                    dir.path())
-                .exit_code,
-            0);
+  const CliResult simulated = run_cli(
+      "simulate j.csv --sides 3 --marks-csv marks.csv --truth physical --servo ideal --no-cg-lever --json", dir.path());
+  ASSERT_EQ(simulated.exit_code, 0) << simulated.err;
   const CliResult render = run_cli("render-scan tri.png --path-csv marks.csv --sides 3 --json", dir.path());
   ASSERT_EQ(render.exit_code, 0) << render.err;
   const CliResult scan = run_cli("scan tri.png --shape triangle --json", dir.path());
@@ -267,6 +266,10 @@ TEST(CliScan, TheTwinsUncompensatedTriangleScansToItsTruth) {
   EXPECT_NEAR(out["length_mm"].get<double>(), truth["length_mm"].get<double>(), 0.005);
   EXPECT_TRUE(out["warnings"].empty()) << out["warnings"].dump();
   EXPECT_EQ(out["length_uncertainty_mm"].get<double>(), 0.0);
+  // One mark metric: the scan of the simulated mark gives simulate's own numbers (both measure along the mark).
+  const auto sim = simulated.json();
+  EXPECT_NEAR(out["length_mm"].get<double>(), sim["length_mm"].get<double>(), 0.005);
+  EXPECT_NEAR(out["max_deviation_mm"].get<double>(), sim["max_deviation_mm"].get<double>(), 0.005);
 }
 
 // Runs a command on a pseudo-terminal (util-linux script) and returns what the terminal showed.
