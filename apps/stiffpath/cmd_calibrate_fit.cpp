@@ -16,7 +16,7 @@
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/core/output_budget.hpp"
 #include "stiffpath/job/joint_reader.hpp"
-#include "stiffpath/vision/scan/plate_marks.hpp"
+#include "stiffpath/vision/scan/calibrate_from_scan.hpp"
 
 namespace stiffpath::cli {
 
@@ -31,24 +31,6 @@ struct FitArgs {
   bool json = false;
 };
 
-std::vector<compensation::JointCommand> read_commands(const std::string& path, const kinematics::Robot& robot) {
-  job::JointReader reader(path);
-  std::vector<compensation::JointCommand> out;
-  while (auto c = reader.next()) {
-    if (out.size() == kMaxPlateCommands) {
-      throw Error(SourceLocation{path}, fmt::format("LIMIT: more than {} joint records; a plate's joint file holds far fewer",
-                                                    kMaxPlateCommands));
-    }
-    out.push_back(*c);
-  }
-  if (!reader.geometry_hash().empty() && reader.geometry_hash() != robot.geometry_hash()) {
-    throw Error(SourceLocation{path}, fmt::format("the joint file was written for another robot geometry ({}) than robot "
-                                                  "'{}': run the plate with the robot being calibrated",
-                                                  reader.mechanism().empty() ? "unnamed" : reader.mechanism(), robot.name));
-  }
-  return out;
-}
-
 void fit(const FitArgs& a) {
   const auto robot = load_robot_flag(a.robot);
   const std::filesystem::path out(a.output);
@@ -60,36 +42,23 @@ void fit(const FitArgs& a) {
       robot_inputs(robot, true, {{"plate", a.plate}, {"scan", a.scan}, {"--joints", a.joints}, {"--model", a.model.model}}),
       {{"-o", a.output}, {"(the model file)", model_path.string()}, {"(the report)", (report_dir / "calibration.json").string()}});
   const calibration::PlateDesign plate = calibration::load_plate(a.plate);
-  if (plate.geometry_sha256 != robot.geometry_hash()) {
-    throw Error(SourceLocation{a.plate}, fmt::format("the plate was laid out for robot '{}' of another geometry than '{}'",
-                                                     plate.robot, robot.name));
-  }
-  const auto commands = read_commands(a.joints, robot);
+  const auto commands = job::read_joint_commands(a.joints, robot.geometry_hash(), kMaxPlateCommands);
   const compliance::LoadedModel base = compliance::load_robot_model(robot, model_request(a.model));
   core::check_output_directory(report_dir.string());
-
-  const vision::PlateObservation seen = vision::observe_calibration_plate(plate, a.scan);
-  const calibration::Identification id = calibration::identify(commands, robot, *base.model, plate, seen.marks);
-  const calibration::CalibratedRobot files = calibration::calibrated_robot(robot, base, id, model_name);
-
-  // The model first, so that the robot file that names it is checked as every command will read it.
-  core::write_file_atomically(model_path, files.model.dump(2) + "\n");
-  const std::string robot_text = files.robot.dump(2) + "\n";
-  (void)kinematics::parse_robot(robot_text, core::DataRef{a.output, false});
-  nlohmann::json report = calibration::identification_json(id);
+  vision::ScanCalibration cal;
+  try {
+    cal = vision::calibrate_from_scan(robot, base, plate, commands, a.scan, model_name);
+  } catch (const Error& e) {
+    if (!e.where().file.empty()) throw;
+    throw Error(SourceLocation{a.plate}, e.message());
+  }
+  cal.report["plate"] = a.plate;
+  cal.report["joints"] = a.joints;
+  vision::write_scan_calibration(cal, out, model_name, report_dir);
+  const vision::PlateObservation& seen = cal.seen;
+  const calibration::Identification& id = cal.identified;
   const auto& r = seen.registration;
-  report["registration"] = {{"fiducials", r.fiducials},
-                            {"mirrored", r.mirrored},
-                            {"residual_rms_um", r.residual_rms_m * 1e6},
-                            {"residual_max_um", r.residual_max_m * 1e6}};
-  report["warnings"] = seen.warnings;
-  report["robot"] = robot.name;
-  report["plate"] = a.plate;
-  report["scan"] = a.scan;
-  report["joints"] = a.joints;
-  core::create_output_directory(report_dir.string());
-  core::write_file_atomically(report_dir / "calibration.json", report.dump(2) + "\n");
-  core::write_file_atomically(out, robot_text);
+  nlohmann::json report = cal.report;
   if (a.json) {
     report["output"] = a.output;
     report["model_file"] = model_path.string();

@@ -71,4 +71,5 @@ PYBIND11_MODULE(stiffpath, m) {
   stiffpath::python::add_compensation(m);
   stiffpath::python::add_twin(m);
   stiffpath::python::add_job(m);
+  stiffpath::python::add_calibration(m);
 }

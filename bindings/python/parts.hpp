@@ -29,5 +29,6 @@ void add_motion(py::module_& m);       //!< plan
 void add_compensation(py::module_& m); //!< Compensator, JointCommand, compensate
 void add_twin(py::module_& m);         //!< true_compliance, simulate, run_metrics, path_metrics
 void add_job(py::module_& m);          //!< run: the main job as `stiffpath run`
+void add_calibration(py::module_& m);  //!< calibration_plate: the plate `stiffpath calibrate plate` lays out
 
 }  // namespace stiffpath::python

@@ -193,4 +193,21 @@ std::optional<compensation::JointCommand> JointReader::next_binary() {
   return r;
 }
 
+std::vector<compensation::JointCommand> read_joint_commands(const std::string& path, const std::string& geometry_hash,
+                                                            std::size_t max_records) {
+  JointReader reader(path);
+  std::vector<compensation::JointCommand> out;
+  while (auto c = reader.next()) {
+    if (out.size() == max_records) {
+      throw Error(SourceLocation{path}, fmt::format("LIMIT: more than {} joint records", max_records));
+    }
+    out.push_back(*c);
+  }
+  if (!geometry_hash.empty() && !reader.geometry_hash().empty() && reader.geometry_hash() != geometry_hash) {
+    throw Error(SourceLocation{path}, fmt::format("the joint file was written for another robot geometry ({})",
+                                                  reader.mechanism().empty() ? "unnamed" : reader.mechanism()));
+  }
+  return out;
+}
+
 }  // namespace stiffpath::job

@@ -17,4 +17,5 @@ PYBIND11_MODULE(_stiffpath_vision, m) {
   m.attr("Error") = py::module_::import("stiffpath").attr("Error");
   stiffpath::python::add_scan(m);
   stiffpath::python::add_render(m);
+  stiffpath::python::add_calibrate(m);
 }

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "stiffpath/compliance/model.hpp"
+#include "stiffpath/core/units.hpp"
 #include "stiffpath/kinematics/robot.hpp"
 
 namespace stiffpath::calibration {
@@ -47,7 +48,7 @@ struct StrokeMark {
 
 //! How a plate is laid out. Documented defaults; every length fits the robot's own measured region.
 struct PlateOptions {
-  double acceleration_m_s2 = 49.03325;  //!< the highest acceleration (5 g); the job's --accel
+  double acceleration_m_s2 = 5.0 * units::standard_gravity_m_s2;  //!< the highest acceleration (5 g); the job's --accel
   //! The accelerations, as fractions of acceleration_m_s2 (at least two: deflection scales with it, laser
   //! timing does not).
   std::vector<double> acceleration_levels{1.0, 0.5};

@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "stiffpath/compensation/samples.hpp"
 #include "stiffpath/core/csv.hpp"
@@ -60,5 +61,10 @@ class JointReader {
   double rate_hz_ = 0.0, first_t_ = 0.0, last_t_ = 0.0;
   std::string mechanism_, geometry_hash_;
 };
+
+//! Every command of a joint file, in memory: at most `max_records` (refused beyond, "LIMIT", naming the file), and
+//! refused when the file records a geometry other than `geometry_hash` (when both are known: empty skips the check).
+std::vector<compensation::JointCommand> read_joint_commands(const std::string& path, const std::string& geometry_hash,
+                                                            std::size_t max_records);
 
 }  // namespace stiffpath::job

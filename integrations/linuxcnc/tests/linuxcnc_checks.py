@@ -85,8 +85,8 @@ def check_laser_edges(check, rows, expected, label):
         check(abs(off - arrive) <= 1, "%s: the laser goes off in period %d, the planned point reaches %s in period %d"
               % (label, off, end, arrive))
         worst = max(worst, abs(on - (leave + 1)), abs(off - arrive))
-        def standing(k):
-            return all(math.hypot(rows[j]["x_mm"] - rows[k]["x_mm"], rows[j]["y_mm"] - rows[k]["y_mm"]) <= 1e-9
+        def standing(k):  # the same point as the period before or after it: a rest begins, goes on or ends here
+            return any(math.hypot(rows[j]["x_mm"] - rows[k]["x_mm"], rows[j]["y_mm"] - rows[k]["y_mm"]) <= 1e-6
                        for j in (k - 1, k + 1) if 0 <= j < len(rows))
         check(all(abs(rows[k]["power"] - power) <= 1e-6 or (standing(k) and rows[k]["power"] == 0.0)
                   for k in range(on, off)),
