@@ -22,14 +22,6 @@ struct PlateArgs {
   bool json = false;
 };
 
-// Where the robot's compliance model holds: its measurement points' rectangle, or its model file's.
-compliance::GridBounds measured_region(const kinematics::Robot& robot) {
-  if (!robot.compliance.table.empty()) return compliance::table_region(compliance::robot_table(robot));
-  if (!robot.compliance.model.empty()) return compliance::load_robot_model(robot).model->bounds();
-  throw Error(SourceLocation{robot.file.label()},
-              fmt::format("robot '{}' has no compliance data: the plate is laid out over its measured region", robot.name));
-}
-
 void plate(const PlateArgs& a) {
   const auto robot = load_robot_flag(a.robot);
   calibration::PlateOptions options;
@@ -38,7 +30,7 @@ void plate(const PlateArgs& a) {
   } catch (const Error& e) {
     throw Error("--accel: " + e.message());
   }
-  const calibration::PlateDesign design = calibration::design_plate(robot, measured_region(robot), options);
+  const calibration::PlateDesign design = calibration::design_plate(robot, calibration::plate_region(robot), options);
   const std::filesystem::path dir(a.output);
   core::check_distinct_files(robot_inputs(robot, true), {{"-o", (dir / "plate.gcode").string()}, {"-o", (dir / "plate.json").string()}});
   core::create_output_directory(dir);

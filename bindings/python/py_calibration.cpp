@@ -16,20 +16,12 @@ namespace stiffpath::python {
 
 namespace {
 
-// Where the robot's compliance model holds: its table's points' rectangle, or its model file's.
-compliance::GridBounds measured_region(const kinematics::Robot& robot) {
-  if (!robot.compliance.table.empty()) return compliance::table_region(compliance::robot_table(robot));
-  if (!robot.compliance.model.empty()) return compliance::load_robot_model(robot).model->bounds();
-  throw Error(SourceLocation{robot.file.label()},
-              "robot '" + robot.name + "' has no compliance data: the plate is laid out over its measured region");
-}
-
 py::dict calibration_plate(const py::handle& robot_arg, double accel_m_s2, const std::optional<std::string>& output_dir) {
   const kinematics::Robot robot = py::isinstance<py::str>(robot_arg) ? kinematics::load_robot(robot_arg.cast<std::string>())
                                                                       : robot_arg.cast<kinematics::Robot>();
   calibration::PlateOptions options;
   options.acceleration_m_s2 = accel_m_s2;
-  const calibration::PlateDesign design = calibration::design_plate(robot, measured_region(robot), options);
+  const calibration::PlateDesign design = calibration::design_plate(robot, calibration::plate_region(robot), options);
   py::dict out;
   out["gcode"] = calibration::plate_gcode(design, options);
   out["plate"] = calibration::plate_json(design);

@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "stiffpath/calibration/plate.hpp"
+#include "stiffpath/compliance/model_factory.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/core/units.hpp"
 
@@ -174,6 +175,13 @@ PlateDesign design_plate(const kinematics::Robot& robot, const compliance::GridB
     }
   }
   return plate;
+}
+
+compliance::GridBounds plate_region(const kinematics::Robot& robot) {
+  if (!robot.compliance.table.empty()) return compliance::table_region(compliance::robot_table(robot));
+  if (!robot.compliance.model.empty()) return compliance::load_robot_model(robot).model->bounds();
+  throw Error(SourceLocation{robot.file.label()},
+              fmt::format("robot '{}' has no compliance data: the plate is laid out over its measured region", robot.name));
 }
 
 }  // namespace stiffpath::calibration

@@ -80,6 +80,9 @@ struct PlateDesign {
 //! for options out of range or a region that cannot hold the plate, naming what does not fit.
 PlateDesign design_plate(const kinematics::Robot& robot, const compliance::GridBounds& region,
                          const PlateOptions& options = {});
+//! Where the robot's compliance model holds, over which its plate is laid out: its table's points' rectangle, else
+//! its model file's. Throws stiffpath::Error naming the robot file when it has neither.
+compliance::GridBounds plate_region(const kinematics::Robot& robot);
 
 //! The plate as a G-code program in the robot frame (mm, G21 G90 G61): the fiducials first, then the strokes,
 //! each with its acceleration (M204 S, mm/s²), the laser on for every mark (M3) and off between (M5).
