@@ -1,9 +1,11 @@
 // calibrated_robot(): the identified values written as a robot file and a corrected model file.
 #include "stiffpath/calibration/calibrated_robot.hpp"
 
+#include <Eigen/LU>
 #include <Eigen/QR>
 #include <fmt/format.h>
 
+#include "stiffpath/compensation/tip_modes.hpp"
 #include "stiffpath/compliance/model_file.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/kinematics/robot_json.hpp"
@@ -12,27 +14,36 @@ namespace stiffpath::calibration {
 
 namespace {
 
-// The linear fit of sx1·sx2 (and sy1·sy2) over the second correction's normalised square, in its coordinates.
+// One correction for two rounds: at each point of a 9 × 9 grid over the second's square, the symmetric S with
+// S·C·S = S₂·S₁·C·S₁·S₂ (C the base model: S = C^-½·(C^½·T·C^½)^½·C^-½, the unique positive definite solution),
+// then sx = S11², sy = S22² and k = S12 each fitted linearly in the second's coordinates.
 compliance::ComplianceCorrection composed(const compliance::ComplianceCorrection& first,
-                                          const compliance::ComplianceCorrection& second) {
+                                          const compliance::ComplianceCorrection& second, const compliance::Model& base) {
   compliance::ComplianceCorrection out = second;
   Eigen::MatrixXd A(81, 3);
-  Eigen::VectorXd bx(81), by(81);
+  Eigen::VectorXd bx(81), by(81), bk(81);
   int row = 0;
   for (int i = 0; i < 9; ++i) {
     for (int j = 0; j < 9; ++j) {
       const double u = -1.0 + 0.25 * i, v = -1.0 + 0.25 * j;
       const Vec2 p = second.origin_m + Vec2(u * second.half_size_m.x(), v * second.half_size_m.y());
-      const Vec2 f = first.factors(p).cwiseProduct(second.factors(p));
+      const Mat2 C = base.compliance(p);
+      const Mat2 M = second.matrix(p) * first.matrix(p);
+      const Mat2 T = M * C * M.transpose();
+      const Mat2 root = compensation::matrix_sqrt(C), inverse_root = root.inverse();
+      const Mat2 S = inverse_root * compensation::matrix_sqrt(root * T * root) * inverse_root;
       A.row(row) << 1.0, u, v;
-      bx[row] = f.x();
-      by[row] = f.y();
+      bx[row] = S(0, 0) * S(0, 0);
+      by[row] = S(1, 1) * S(1, 1);
+      bk[row] = 0.5 * (S(0, 1) + S(1, 0));
       ++row;
     }
   }
-  const Eigen::Vector3d cx = A.colPivHouseholderQr().solve(bx), cy = A.colPivHouseholderQr().solve(by);
+  const auto qr = A.colPivHouseholderQr();
+  const Eigen::Vector3d cx = qr.solve(bx), cy = qr.solve(by), ck = qr.solve(bk);
   out.sx = {cx[0], cx[1], cx[2]};
   out.sy = {cy[0], cy[1], cy[2]};
+  out.sxy = {ck[0], ck[1], ck[2]};
   return out;
 }
 
@@ -47,7 +58,7 @@ CalibratedRobot calibrated_robot(const kinematics::Robot& robot, const complianc
   std::shared_ptr<compliance::Model> original;
   compliance::ComplianceCorrection correction = id.after.correction;
   if (const auto* corrected = dynamic_cast<const compliance::CorrectedModel*>(base.model.get())) {
-    correction = composed(corrected->correction(), id.after.correction);
+    correction = composed(corrected->correction(), id.after.correction, corrected->base());
     // A copy of the base of the earlier round: re-read from its own JSON, so the result owns its model.
     const nlohmann::json doc = compliance::model_to_json(corrected->base(), base.provenance);
     original = std::shared_ptr<compliance::Model>(
@@ -67,9 +78,14 @@ CalibratedRobot calibrated_robot(const kinematics::Robot& robot, const complianc
                                          robot.description.empty() ? robot.name : robot.description);
   out.robot["tip_damping_ratio"] = id.after.damping_ratio;
   out.robot["tip_frequency_scale"] = id.after.frequency_scale;
-  // The laser's delays are reported, not written: the plate's strokes switch the laser at rest, where a delay moves
-  // an end by a few µm, and on the twin the off delay came out 4.8 ± 0.2 ms for a true 0 (the scan's end of a mark
-  // and the spot's centre differ by about half the mark's width). They stay the robot file's.
+  // The laser's delays, where the plate determined them (its timing strokes switch the laser at speed); otherwise the
+  // robot file's stay.
+  double delay_ms[2] = {robot.laser_on_delay_s * 1e3, robot.laser_off_delay_s * 1e3};
+  for (const auto& v : id.values) {
+    const int k = v.name == "laser_on_delay_s" ? 0 : v.name == "laser_off_delay_s" ? 1 : -1;
+    if (k >= 0 && v.determined) delay_ms[k] = v.after * 1e3;
+  }
+  if (delay_ms[0] != 0.0 || delay_ms[1] != 0.0) out.robot["laser"] = {{"on_delay_ms", delay_ms[0]}, {"off_delay_ms", delay_ms[1]}};
   out.robot["compliance"] = {{"model", model_file_name}};
   return out;
 }

@@ -23,6 +23,7 @@ struct ParameterSpec {
 constexpr ParameterSpec kParameters[] = {
     {"sx0", 0.05, 0.3, 3.0},  {"sx1", 0.05, -1.0, 1.0},      {"sx2", 0.05, -1.0, 1.0},
     {"sy0", 0.05, 0.3, 3.0},  {"sy1", 0.05, -1.0, 1.0},      {"sy2", 0.05, -1.0, 1.0},
+    {"sxy0", 0.02, -0.5, 0.5}, {"sxy1", 0.02, -0.5, 0.5},    {"sxy2", 0.02, -0.5, 0.5},
     {"damping_ratio", 0.02, 0.002, 0.6}, {"frequency_scale", 0.05, 0.3, 3.0},
     {"laser_on_delay_s", 2e-4, -0.02, 0.02}, {"laser_off_delay_s", 2e-4, -0.02, 0.02},
 };
@@ -31,17 +32,18 @@ constexpr int kCount = static_cast<int>(std::size(kParameters));
 Eigen::VectorXd to_vector(const TipParameters& t) {
   Eigen::VectorXd x(kCount);
   x << t.correction.sx[0], t.correction.sx[1], t.correction.sx[2], t.correction.sy[0], t.correction.sy[1],
-      t.correction.sy[2], t.damping_ratio, t.frequency_scale, t.laser_on_delay_s, t.laser_off_delay_s;
+      t.correction.sy[2], t.correction.sxy[0], t.correction.sxy[1], t.correction.sxy[2], t.damping_ratio, t.frequency_scale, t.laser_on_delay_s, t.laser_off_delay_s;
   return x;
 }
 
 TipParameters from_vector(const Eigen::VectorXd& x, TipParameters t) {
   t.correction.sx = {x[0], x[1], x[2]};
   t.correction.sy = {x[3], x[4], x[5]};
-  t.damping_ratio = x[6];
-  t.frequency_scale = x[7];
-  t.laser_on_delay_s = x[8];
-  t.laser_off_delay_s = x[9];
+  t.correction.sxy = {x[6], x[7], x[8]};
+  t.damping_ratio = x[9];
+  t.frequency_scale = x[10];
+  t.laser_on_delay_s = x[11];
+  t.laser_off_delay_s = x[12];
   return t;
 }
 
@@ -52,6 +54,7 @@ struct MarkData {
   std::vector<Vec2> points;
   std::vector<double> s;  // arc length of each point along the measured mark
   Vec2 start_direction, end_direction;
+  bool ends = true;  // whether its two ends are measured (an arc's centre line is measured short of them)
 };
 
 // Signed normal distances of `points` to the polyline `path` (positive to the path's left), searching forward
@@ -120,8 +123,9 @@ std::vector<MarkData> mark_data(const PlateDesign& plate, const std::vector<Obse
         last = s;
       }
     }
-    d.start_direction = (plan.end_m - plan.start_m).normalized();
-    d.end_direction = plan.kind == StrokeKind::ringing ? Vec2((plan.tail_end_m - plan.end_m).normalized()) : d.start_direction;
+    d.start_direction = plan.start_direction();
+    d.end_direction = plan.end_direction();
+    d.ends = plan.kind != StrokeKind::arc;
     out.push_back(std::move(d));
   }
   if (out.empty()) throw Error("calibration: no measured mark to fit");
@@ -140,8 +144,8 @@ Eigen::VectorXd residuals(const std::vector<MarkData>& data, const std::vector<P
     for (const double dist : normal_distances(d.points, path)) r[i++] = dist / o.point_sigma_m;
     const Vec2 first = path.empty() ? d.points.front() + Vec2(1.0, 0.0) : path.front();
     const Vec2 last = path.empty() ? d.points.back() + Vec2(1.0, 0.0) : path.back();
-    r[i++] = (d.points.front() - first).dot(d.start_direction) / o.end_sigma_m;
-    r[i++] = (d.points.back() - last).dot(d.end_direction) / o.end_sigma_m;
+    r[i++] = d.ends ? (d.points.front() - first).dot(d.start_direction) / o.end_sigma_m : 0.0;
+    r[i++] = d.ends ? (d.points.back() - last).dot(d.end_direction) / o.end_sigma_m : 0.0;
   }
   return r;
 }
@@ -192,7 +196,8 @@ Identification identify(const std::vector<compensation::JointCommand>& commands,
       const double norm = scaled.col(k).norm();
       if (norm > 0.0) scaled.col(k) /= norm;
     }
-    const std::vector<int> preference{9, 8, 7, 6, 2, 5, 1, 4, 0, 3};  // timing first, the field's constant last
+    // Timing first, then the field's gradients and its cross terms, its constant scales last.
+    const std::vector<int> preference{12, 11, 10, 9, 8, 7, 2, 5, 1, 4, 6, 0, 3};
     problem.fixed.assign(kCount, false);
     for (const int k : core::parameters_to_fix(scaled, settings.undetermined_ratio, preference)) problem.fixed[static_cast<std::size_t>(k)] = true;
   }
@@ -225,32 +230,40 @@ Identification identify(const std::vector<compensation::JointCommand>& commands,
     }
     f.rms_before_m = std::sqrt(f.rms_before_m / static_cast<double>(d.points.size()));
     f.rms_after_m = std::sqrt(f.rms_after_m / static_cast<double>(d.points.size()));
-    if (!before[d.pulse].points_m.empty()) f.end_before_m = (d.points.back() - before[d.pulse].points_m.back()).dot(d.end_direction);
-    if (!after[d.pulse].points_m.empty()) f.end_after_m = (d.points.back() - after[d.pulse].points_m.back()).dot(d.end_direction);
+    if (d.ends && !before[d.pulse].points_m.empty()) f.end_before_m = (d.points.back() - before[d.pulse].points_m.back()).dot(d.end_direction);
+    if (d.ends && !after[d.pulse].points_m.empty()) f.end_after_m = (d.points.back() - after[d.pulse].points_m.back()).dot(d.end_direction);
     out.marks.push_back(std::move(f));
   }
   out.rms_before_m = std::sqrt(sum_before / std::max(count, 1));
   out.rms_after_m = std::sqrt(sum_after / std::max(count, 1));
   out.residuals = static_cast<int>(r0.size());
 
-  // sx, sy at each station's centre, with their uncertainty (they are linear in the coefficients).
+  // m·C after over before along x and y at each station's centre, (S·C·S)ii / Cii, with its uncertainty (the
+  // delta method over the correction's nine coefficients, by central differences).
   std::map<std::string, std::pair<Vec2, int>> stations;
   for (const auto& m : plate.strokes) {
     auto& [sum, n] = stations[m.id.substr(0, m.id.find('-'))];
     if (n == 0) sum = Vec2::Zero();
-    sum += 0.5 * (m.start_m + m.end_m), ++n;
+    sum += m.kind == StrokeKind::arc ? m.centre_m : Vec2(0.5 * (m.start_m + m.end_m)), ++n;
   }
-  const auto& c = out.after.correction;
+  const auto scale_at = [&](const Eigen::VectorXd& x, const Vec2& p) {
+    const Mat2 C = model.compliance(p), S = from_vector(x, base).correction.matrix(p);
+    const Mat2 Q = S * C * S;
+    return Vec2(Q(0, 0) / C(0, 0), Q(1, 1) / C(1, 1));
+  };
   for (const auto& [name, entry] : stations) {
-    const Vec2 p = entry.first / entry.second;
-    const Eigen::Vector3d g(1.0, (p.x() - c.origin_m.x()) / c.half_size_m.x(), (p.y() - c.origin_m.y()) / c.half_size_m.y());
     Identification::PointScale ps;
-    ps.point_m = p;
-    ps.scale = c.factors(p);
+    ps.point_m = entry.first / entry.second;
+    ps.scale = scale_at(result.x, ps.point_m);
     if (result.statistics) {
-      const Eigen::MatrixXd& cov = result.statistics->covariance;
-      ps.sigma = {std::sqrt(std::max(0.0, g.dot(cov.block<3, 3>(0, 0) * g))),
-                  std::sqrt(std::max(0.0, g.dot(cov.block<3, 3>(3, 3) * g)))};
+      Eigen::MatrixXd g(2, 9);
+      for (int k = 0; k < 9; ++k) {
+        Eigen::VectorXd up = result.x, down = result.x;
+        up[k] += 1e-6, down[k] -= 1e-6;
+        g.col(k) = (scale_at(up, ps.point_m) - scale_at(down, ps.point_m)) / 2e-6;
+      }
+      const Eigen::Matrix2d cov = g * result.statistics->covariance.topLeftCorner(9, 9) * g.transpose();
+      ps.sigma = {std::sqrt(std::max(0.0, cov(0, 0))), std::sqrt(std::max(0.0, cov(1, 1)))};
     }
     out.scales.push_back(ps);
   }

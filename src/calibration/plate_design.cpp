@@ -1,4 +1,4 @@
-// Lays out the calibration plate over a robot's measured region: fiducials in the corners, strokes in cells of their own.
+// Lays out the calibration plate over a robot's measured region: fiducials in the corners, strokes and arcs in cells of their own.
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
@@ -8,6 +8,7 @@
 #include "stiffpath/compliance/model_factory.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/core/units.hpp"
+#include "stiffpath/motion/segment_limits.hpp"
 
 namespace stiffpath::calibration {
 
@@ -32,6 +33,10 @@ void check_options(const PlateOptions& o) {
   }
   if (o.stations_x < 1 || o.stations_y < 1 || o.stations_x * o.stations_y < 4 || o.stations_x * o.stations_y > 64) {
     fail(fmt::format("stations: at least four places and at most 64, got {} x {}", o.stations_x, o.stations_y));
+  }
+  if (!(o.arc_sweep_deg >= 180.0 && o.arc_sweep_deg <= 300.0)) {
+    fail(fmt::format("an arc's sweep must lie in 180 … 300 deg (every direction across it, its ends apart), got {}",
+                     o.arc_sweep_deg));
   }
   if (!(o.tail_length_m >= 1e-3 && o.tail_length_m <= 50e-3)) fail("the tail must be 1 … 50 mm long");
   if (!(o.tail_feed_m_s >= 1e-3 && o.tail_feed_m_s <= 0.5)) fail("the tail's speed must lie in 1 … 500 mm/s");
@@ -124,14 +129,22 @@ PlateDesign design_plate(const kinematics::Robot& robot, const compliance::GridB
     band.y_min += clear, band.y_max -= clear;
   }
 
-  // Stations, and in each one cell per (direction, level): the longest common stroke that fits every cell.
-  const std::size_t per_station = o.directions_deg.size() * (o.acceleration_levels.size() + 1);
-  const int columns = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(per_station))));
-  const int rows = static_cast<int>((per_station + static_cast<std::size_t>(columns) - 1) / static_cast<std::size_t>(columns));
+  // Stations, and in each one cell per (direction, level) and per level's arc: the columns and rows that give the
+  // longest common stroke that fits every cell.
+  const std::size_t straight = o.directions_deg.size() * (o.acceleration_levels.size() + 1);
+  const std::size_t per_station = straight + o.acceleration_levels.size();
   const double station_w = (band.x_max - band.x_min) / o.stations_x, station_h = (band.y_max - band.y_min) / o.stations_y;
+  int columns = 1;
+  double stroke = -1.0;
+  for (int c = 1; c <= static_cast<int>(per_station); ++c) {
+    const auto r = static_cast<int>((per_station + static_cast<std::size_t>(c) - 1) / static_cast<std::size_t>(c));
+    const double length = longest_stroke(o.directions_deg, o.tail_length_m, station_w / c, station_h / r, o.margin_m);
+    if (length > stroke) stroke = length, columns = c;
+  }
+  const int rows = static_cast<int>((per_station + static_cast<std::size_t>(columns) - 1) / static_cast<std::size_t>(columns));
   const double cell_w = station_w / columns, cell_h = station_h / rows;
-  const double stroke = longest_stroke(o.directions_deg, o.tail_length_m, cell_w, cell_h, o.margin_m);
-  if (!(stroke >= kShortestStroke_m)) {
+  const double arc_radius = 0.5 * std::min(cell_w, cell_h) - o.margin_m;
+  if (!(stroke >= kShortestStroke_m) || !(arc_radius >= 0.5 * kShortestStroke_m)) {
     throw Error(fmt::format("calibration plate: the measured region ({:.0f} x {:.0f} mm) leaves cells of {:.1f} x {:.1f} mm "
                             "for {} marks per station: strokes of {:.1f} mm, shorter than {:.0f} mm (fewer stations, "
                             "directions or levels)",
@@ -143,34 +156,59 @@ PlateDesign design_plate(const kinematics::Robot& robot, const compliance::GridB
     for (int sx = 0; sx < o.stations_x; ++sx) {
       const int station = sy * o.stations_x + sx + 1;
       std::size_t k = 0;
-      // Every level's ringing strokes, then the timing strokes at the highest level (its first).
+      const auto next_cell = [&] {
+        const int col = static_cast<int>(k % static_cast<std::size_t>(columns));
+        const int row = static_cast<int>(k / static_cast<std::size_t>(columns));
+        ++k;
+        return Vec2(band.x_min + sx * station_w + (col + 0.5) * cell_w, band.y_min + sy * station_h + (row + 0.5) * cell_h);
+      };
+      // Every level's ringing strokes, then the timing strokes at the highest level (its first), then an arc per level.
       for (std::size_t slot = 0; slot <= o.acceleration_levels.size(); ++slot) {
         const bool timing = slot == o.acceleration_levels.size();
         const std::size_t level = timing ? 0 : slot;
         for (const double deg : o.directions_deg) {
-          const int col = static_cast<int>(k % static_cast<std::size_t>(columns));
-          const int row = static_cast<int>(k / static_cast<std::size_t>(columns));
-          ++k;
-          const Vec2 cell_centre(band.x_min + sx * station_w + (col + 0.5) * cell_w,
-                                 band.y_min + sy * station_h + (row + 0.5) * cell_h);
+          const Vec2 cell_centre = next_cell();
           const Vec2 u(std::cos(units::deg_to_rad(deg)), std::sin(units::deg_to_rad(deg)));
           const Vec2 n(-u.y(), u.x());
           StrokeMark m;
           m.kind = timing ? StrokeKind::timing : StrokeKind::ringing;
           m.id = fmt::format("S{}-D{:03.0f}-A{}-{}", station, deg, level + 1, timing ? 'T' : 'R');
-          // The stroke and its tail centred in the cell.
+          // The stroke and its tail centred in the cell; a timing stroke's mark is its middle half, run up to and
+          // out of at speed over a quarter each side.
           const double tail = timing ? 0.0 : o.tail_length_m;
           const Vec2 middle = cell_centre - 0.5 * tail * n;
-          m.start_m = middle - 0.5 * stroke * u;
-          m.end_m = middle + 0.5 * stroke * u;
+          const double mark = timing ? 0.5 * stroke : stroke;
+          m.start_m = middle - 0.5 * mark * u;
+          m.end_m = middle + 0.5 * mark * u;
           m.tail_end_m = m.end_m + tail * n;
+          m.run_m = timing ? 0.25 * stroke : 0.0;
           m.acceleration_m_s2 = o.acceleration_m_s2 * o.acceleration_levels[level];
-          // The speed a rest-to-rest stroke of this length peaks at: accelerate half, decelerate half.
-          m.feed_m_s = std::min(2.0, std::sqrt(m.acceleration_m_s2 * stroke));
+          // The speed a rest-to-rest stroke of this length peaks at (accelerate half, decelerate half); a timing
+          // stroke the speed its run-up reaches with room to spare for the jerk (v² = a·run, half of 2·a·run).
+          m.feed_m_s = std::min(2.0, std::sqrt(m.acceleration_m_s2 * (timing ? m.run_m : stroke)));
           m.tail_feed_m_s = o.tail_feed_m_s;
-          check_reach(robot, m.polyline_m(), "mark " + m.id);
+          check_reach(robot, m.motion_m(), "mark " + m.id);
           plate.strokes.push_back(m);
         }
+      }
+      for (std::size_t level = 0; level < o.acceleration_levels.size(); ++level) {
+        // Counter-clockwise about the cell's centre, the gap to the left (-x): from 180° + gap/2 round to 180° − gap/2.
+        StrokeMark m;
+        m.kind = StrokeKind::arc;
+        m.id = fmt::format("S{}-A{}-C", station, level + 1);
+        m.centre_m = next_cell();
+        m.sweep_rad = units::deg_to_rad(o.arc_sweep_deg);
+        const double from = std::numbers::pi + 0.5 * (2.0 * std::numbers::pi - m.sweep_rad);
+        m.start_m = m.centre_m + arc_radius * Vec2(std::cos(from), std::sin(from));
+        m.end_m = m.centre_m + arc_radius * Vec2(std::cos(from + m.sweep_rad), std::sin(from + m.sweep_rad));
+        m.tail_end_m = m.end_m;
+        m.acceleration_m_s2 = o.acceleration_m_s2 * o.acceleration_levels[level];
+        // The fastest the planner turns it: the centripetal share of the level's acceleration (the rest is left for
+        // speeding up along the arc), v²/r = 0.7·a.
+        m.feed_m_s = std::min(2.0, std::sqrt(motion::arc_centripetal_acceleration_share * m.acceleration_m_s2 * arc_radius));
+        m.tail_feed_m_s = o.tail_feed_m_s;
+        check_reach(robot, m.polyline_m(), "mark " + m.id);
+        plate.strokes.push_back(m);
       }
     }
   }

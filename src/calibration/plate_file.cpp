@@ -52,6 +52,37 @@ compliance::GridBounds rect(const core::JsonObject& o, std::string_view key) {
   return {v[0], v[1], v[2], v[3]};
 }
 
+const char* kind_name(StrokeKind kind) {
+  switch (kind) {
+    case StrokeKind::ringing: return "ringing";
+    case StrokeKind::timing: return "timing";
+    case StrokeKind::arc: return "arc";
+  }
+  return "?";
+}
+
+// An arc's mark: its centre and sweep; its polyline must start and end on the circle where the sweep says.
+void read_arc(const core::JsonObject& o, StrokeMark& m) {
+  m.centre_m = point_mm(o, "centre_mm");
+  m.sweep_rad = units::deg_to_rad(bounded(o, "sweep_deg", -360.0, 360.0));
+  const double radius = (m.start_m - m.centre_m).norm();
+  if (!(radius >= 0.5e-3)) o.fail("centre_mm", "an arc's radius must be at least 0.5 mm");
+  if (std::abs(units::rad_to_deg(m.sweep_rad)) < 10.0) o.fail("sweep_deg", "an arc must turn at least 10 deg");
+  const double turned_end_error = (m.end_m - m.centre_m).norm() - radius;
+  if (std::abs(turned_end_error) > 1e-6) {
+    o.fail("polyline_mm", fmt::format("an arc's end must lie on its circle (radius {:.4f} mm): it is {:.4f} mm off",
+                                      units::m_to_mm(radius), units::m_to_mm(turned_end_error)));
+  }
+  const double c = std::cos(m.sweep_rad), s = std::sin(m.sweep_rad);
+  const Vec2 r = m.start_m - m.centre_m;
+  const Vec2 swept = m.centre_m + Vec2(c * r.x() - s * r.y(), s * r.x() + c * r.y());
+  if ((swept - m.end_m).norm() > 1e-6) {
+    o.fail("sweep_deg", fmt::format("the arc from its start turned {:g} deg ends at ({:.4f}, {:.4f}) mm, not at the "
+                                    "polyline's end", units::rad_to_deg(m.sweep_rad), units::m_to_mm(swept.x()),
+                                    units::m_to_mm(swept.y())));
+  }
+}
+
 }  // namespace
 
 std::string plate_json(const PlateDesign& plate) {
@@ -65,12 +96,18 @@ std::string plate_json(const PlateDesign& plate) {
   for (const auto& m : plate.strokes) {
     nlohmann::json polyline = nlohmann::json::array();
     for (const Vec2& p : m.polyline_m()) polyline.push_back(mm(p));
-    marks.push_back({{"id", m.id},
-                     {"kind", m.kind == StrokeKind::ringing ? "ringing" : "timing"},
-                     {"polyline_mm", polyline},
-                     {"acceleration_mm_s2", m.acceleration_m_s2 * 1e3},
-                     {"feed_mm_s", units::m_to_mm(m.feed_m_s)},
-                     {"tail_feed_mm_s", units::m_to_mm(m.tail_feed_m_s)}});
+    nlohmann::json mark = {{"id", m.id},
+                           {"kind", kind_name(m.kind)},
+                           {"polyline_mm", polyline},
+                           {"acceleration_mm_s2", m.acceleration_m_s2 * 1e3},
+                           {"feed_mm_s", units::m_to_mm(m.feed_m_s)},
+                           {"tail_feed_mm_s", units::m_to_mm(m.tail_feed_m_s)}};
+    if (m.kind == StrokeKind::timing) mark["run_mm"] = units::m_to_mm(m.run_m);
+    if (m.kind == StrokeKind::arc) {
+      mark["centre_mm"] = mm(m.centre_m);
+      mark["sweep_deg"] = units::rad_to_deg(m.sweep_rad);
+    }
+    marks.push_back(mark);
   }
   const nlohmann::json doc = {{"format", kFormat},
                               {"version", kVersion},
@@ -114,20 +151,27 @@ PlateDesign load_plate(const std::string& path) {
   if (marks.empty() || marks.size() > kMaxMarks) root.fail("marks", fmt::format("must list 1 … {} marks", kMaxMarks));
   for (std::size_t k = 0; k < marks.size(); ++k) {
     const core::JsonObject o = root.element("marks", k);
-    o.allow_only({"id", "kind", "polyline_mm", "acceleration_mm_s2", "feed_mm_s", "tail_feed_mm_s"});
+    o.allow_only({"id", "kind", "polyline_mm", "acceleration_mm_s2", "feed_mm_s", "tail_feed_mm_s", "centre_mm", "sweep_deg",
+                  "run_mm"});
     StrokeMark m;
     m.id = o.string("id");
     const std::string kind = o.string("kind");
-    if (kind != "ringing" && kind != "timing") o.fail("kind", "must be ringing or timing, got '" + kind + "'");
-    m.kind = kind == "ringing" ? StrokeKind::ringing : StrokeKind::timing;
-    const std::size_t n = m.kind == StrokeKind::ringing ? 3 : 2;
+    if (kind != "ringing" && kind != "timing" && kind != "arc") o.fail("kind", "must be ringing, timing or arc, got '" + kind + "'");
+    m.kind = kind == "ringing" ? StrokeKind::ringing : kind == "timing" ? StrokeKind::timing : StrokeKind::arc;
+    for (const char* key : {"centre_mm", "sweep_deg"}) {
+      if ((m.kind == StrokeKind::arc) != o.has(key)) o.fail(key, m.kind == StrokeKind::arc ? "an arc needs it" : "only an arc has it");
+    }
     const auto& poly = o.array("polyline_mm");
-    if (poly.size() != n) {
-      o.fail("polyline_mm", fmt::format("must list {} points for a {} stroke (its start and end{}), got {}", n, kind,
-                                        n == 3 ? ", the tail's end" : "", poly.size()));
+    const std::size_t n = m.kind == StrokeKind::ringing ? 3 : 2;
+    if (m.kind == StrokeKind::arc ? poly.size() < 2 || poly.size() > 1000 : poly.size() != n) {
+      o.fail("polyline_mm", m.kind == StrokeKind::arc
+                                ? fmt::format("must list 2 … 1000 points along the arc, got {}", poly.size())
+                                : fmt::format("must list {} points for a {} stroke (its start and end{}), got {}", n, kind,
+                                              n == 3 ? ", the tail's end" : "", poly.size()));
     }
     Vec2 p[3];
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = 0; j < n; ++j) {
+      const std::size_t i = m.kind == StrokeKind::arc && j == 1 ? poly.size() - 1 : j;  // an arc: its start and end
       if (!poly[i].is_array() || poly[i].size() != 2 || !poly[i][0].is_number() || !poly[i][1].is_number()) {
         o.fail("polyline_mm", fmt::format("point {} must be [x, y] in mm", i));
       }
@@ -135,13 +179,18 @@ PlateDesign load_plate(const std::string& path) {
       if (!std::isfinite(x) || !std::isfinite(y) || std::abs(x) > kMaxCoordinate_mm || std::abs(y) > kMaxCoordinate_mm) {
         o.fail("polyline_mm", fmt::format("RANGE: point {} must lie within ±{:g} mm", i, kMaxCoordinate_mm));
       }
-      p[i] = {units::mm_to_m(x), units::mm_to_m(y)};
+      p[j] = {units::mm_to_m(x), units::mm_to_m(y)};
     }
     if (n == 2) p[2] = p[1];
     if ((p[1] - p[0]).norm() < 1e-4 || (n == 3 && (p[2] - p[1]).norm() < 1e-4)) {
       o.fail("polyline_mm", "a stroke or tail shorter than 0.1 mm");
     }
     m.start_m = p[0], m.end_m = p[1], m.tail_end_m = p[2];
+    if (m.kind == StrokeKind::arc) read_arc(o, m);
+    if (o.has("run_mm")) {
+      if (m.kind != StrokeKind::timing) o.fail("run_mm", "only a timing stroke has it");
+      m.run_m = units::mm_to_m(bounded(o, "run_mm", 0.0, 1000.0));
+    }
     m.acceleration_m_s2 = bounded(o, "acceleration_mm_s2", 100.0, 1e6) * 1e-3;
     m.feed_m_s = units::mm_to_m(bounded(o, "feed_mm_s", 1.0, 1e5));
     m.tail_feed_m_s = units::mm_to_m(bounded(o, "tail_feed_mm_s", 1.0, 1e5));

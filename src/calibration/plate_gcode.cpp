@@ -1,4 +1,5 @@
-// The calibration plate as G-code: fiducials slowly, then every stroke at its own acceleration, exact stops.
+// The calibration plate as G-code: fiducials slowly, then every stroke at its own acceleration, exact stops (timing
+// strokes: blended, the laser switched at speed).
 #include <algorithm>
 #include <fmt/format.h>
 
@@ -33,6 +34,22 @@ std::string plate_gcode(const PlateDesign& plate, const PlateOptions& options) {
     }
   }
   for (const auto& m : plate.strokes) {
+    if (m.kind == StrokeKind::arc) {
+      const Vec2 ij = m.centre_m - m.start_m;
+      g += fmt::format("; mark {}\nM204 S{:.1f}\nG0 {}\nM3 S{:g}\n{} {} I{:.4f} J{:.4f} F{:.1f}\nM5\n", m.id,
+                       m.acceleration_m_s2 * 1e3, xy(m.start_m), power_s, m.sweep_rad >= 0.0 ? "G3" : "G2", xy(m.end_m),
+                       units::m_to_mm(ij.x()), units::m_to_mm(ij.y()), mm_min(m.feed_m_s));
+      continue;
+    }
+    if (m.kind == StrokeKind::timing && m.run_m > 0.0) {
+      // Run up, the laser on and off at speed where the mark starts and ends, run out: collinear moves blended (G64),
+      // so nothing slows where the laser switches; then exact stops again.
+      const auto path = m.motion_m();
+      g += fmt::format("; mark {}\nM204 S{:.1f}\nG0 {}\nG64 P0.001\nG1 {} F{:.1f}\nM3 S{:g}\nG1 {}\nM5\nG1 {}\nG61\n", m.id,
+                       m.acceleration_m_s2 * 1e3, xy(path[0]), xy(path[1]), mm_min(m.feed_m_s), power_s, xy(path[2]),
+                       xy(path[3]));
+      continue;
+    }
     g += fmt::format("; mark {}\nM204 S{:.1f}\nG0 {}\nM3 S{:g}\nG1 {} F{:.1f}\n", m.id, m.acceleration_m_s2 * 1e3,
                      xy(m.start_m), power_s, xy(m.end_m), mm_min(m.feed_m_s));
     if (m.kind == StrokeKind::ringing) g += fmt::format("G1 {} F{:.1f}\n", xy(m.tail_end_m), mm_min(m.tail_feed_m_s));

@@ -50,8 +50,8 @@ std::vector<PredictedMark> predict_marks(const std::vector<compensation::JointCo
     b.p = five_bar.forward(c.q_rad);
     b.v = five_bar.velocity(c.q_rad, c.qd_rad_s);
     b.a = five_bar.acceleration(c.q_rad, c.qd_rad_s, c.qdd_rad_s2);
-    const Vec2 s = x.correction.factors(model.bounds().clamp(b.p)).cwiseMax(1e-6).cwiseSqrt();
-    b.Q = m * (s.asDiagonal() * model.compliance(b.p) * s.asDiagonal());
+    const Mat2 S = x.correction.matrix(model.bounds().clamp(b.p));
+    b.Q = m * (S * model.compliance(b.p) * S);
     const Mat2 root = compensation::matrix_sqrt(b.Q);
     b.A = root.determinant() > 0.0 ? Mat2(x.frequency_scale * root.inverse()) : Mat2(Mat2::Zero());
     b.laser = c.laser_on;

@@ -1,6 +1,7 @@
-// CorrectedModel: a base compliance model scaled by the calibration's smooth field S(p), C' = S·C·S.
+// CorrectedModel: a base compliance model corrected by the calibration's smooth symmetric field S(p), C' = S·C·S.
 #include "stiffpath/compliance/corrected_model.hpp"
 
+#include <Eigen/LU>
 #include <cmath>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -15,8 +16,18 @@ Vec2 ComplianceCorrection::factors(const Vec2& p) const noexcept {
   return {sx[0] + sx[1] * u + sx[2] * v, sy[0] + sy[1] * u + sy[2] * v};
 }
 
+Mat2 ComplianceCorrection::matrix(const Vec2& p) const noexcept {
+  const Vec2 s = factors(p).cwiseMax(1e-12).cwiseSqrt();
+  const double u = (p.x() - origin_m.x()) / half_size_m.x(), v = (p.y() - origin_m.y()) / half_size_m.y();
+  const double k = sxy[0] + sxy[1] * u + sxy[2] * v;
+  Mat2 S;
+  S << s.x(), k, k, s.y();
+  return S;
+}
+
 bool ComplianceCorrection::identity() const noexcept {
-  return sx == std::array<double, 3>{1.0, 0.0, 0.0} && sy == std::array<double, 3>{1.0, 0.0, 0.0};
+  constexpr std::array<double, 3> one{1.0, 0.0, 0.0}, zero{0.0, 0.0, 0.0};
+  return sx == one && sy == one && sxy == zero;
 }
 
 CorrectedModel::CorrectedModel(std::shared_ptr<Model> base, ComplianceCorrection correction)
@@ -28,10 +39,11 @@ CorrectedModel::CorrectedModel(std::shared_ptr<Model> base, ComplianceCorrection
   const GridBounds b = base_->bounds();
   for (const Vec2& corner : {Vec2(b.x_min, b.y_min), Vec2(b.x_max, b.y_min), Vec2(b.x_min, b.y_max), Vec2(b.x_max, b.y_max)}) {
     const Vec2 s = correction_.factors(corner);
-    if (!(s.x() > 0.0 && s.y() > 0.0) || !s.allFinite()) {
-      throw Error(fmt::format("compliance correction: its factors ({:g}, {:g}) at ({:.1f}, {:.1f}) mm are not positive: "
-                              "C would not stay positive definite",
-                              s.x(), s.y(), corner.x() * 1e3, corner.y() * 1e3));
+    const Mat2 S = correction_.matrix(corner);
+    if (!(s.x() > 0.0 && s.y() > 0.0) || !s.allFinite() || !S.allFinite() || !(S.determinant() > 1e-9)) {
+      throw Error(fmt::format("compliance correction: its factors ({:g}, {:g}, cross term {:g}) at ({:.1f}, {:.1f}) mm "
+                              "make S singular: C would not stay positive definite",
+                              s.x(), s.y(), S(0, 1), corner.x() * 1e3, corner.y() * 1e3));
     }
   }
   Model::set_outside_policy(base_->outside_policy());
@@ -39,10 +51,8 @@ CorrectedModel::CorrectedModel(std::shared_ptr<Model> base, ComplianceCorrection
 }
 
 Mat2 CorrectedModel::corrected(const Vec2& p, const Mat2& C) const noexcept {
-  const Vec2 s = correction_.factors(policy_point(p)).cwiseMax(1e-6).cwiseSqrt();
-  Mat2 out;
-  out << s.x() * s.x() * C(0, 0), s.x() * s.y() * C(0, 1), s.y() * s.x() * C(1, 0), s.y() * s.y() * C(1, 1);
-  return out;
+  const Mat2 S = correction_.matrix(policy_point(p));
+  return S * C * S;
 }
 
 Mat2 CorrectedModel::compliance(const Vec2& p) const noexcept { return corrected(p, base_->compliance(p)); }
@@ -63,7 +73,8 @@ nlohmann::json CorrectedModel::parameters() const {
   out["correction"] = {{"origin_mm", {c.origin_m.x() * 1e3, c.origin_m.y() * 1e3}},
                        {"half_size_mm", {c.half_size_m.x() * 1e3, c.half_size_m.y() * 1e3}},
                        {"sx", {c.sx[0], c.sx[1], c.sx[2]}},
-                       {"sy", {c.sy[0], c.sy[1], c.sy[2]}}};
+                       {"sy", {c.sy[0], c.sy[1], c.sy[2]}},
+                       {"sxy", {c.sxy[0], c.sxy[1], c.sxy[2]}}};
   return out;
 }
 

@@ -277,19 +277,20 @@ PredictionUncertainty uncertainty_from(const core::JsonObject& u) {
 
 // A calibration's correction over the model just read (corrected_model.hpp).
 std::unique_ptr<Model> corrected_from(const core::JsonObject& c, std::unique_ptr<Model> base) {
-  c.allow_only({"origin_mm", "half_size_mm", "sx", "sy"});
+  c.allow_only({"origin_mm", "half_size_mm", "sx", "sy", "sxy"});
   ComplianceCorrection correction;
   const auto [ox, oy] = c.pair("origin_mm");
   const auto [hx, hy] = c.pair("half_size_mm");
   if (!(hx > 0.0 && hy > 0.0)) c.fail("half_size_mm", "must be two positive lengths");
   correction.origin_m = {ox * 1e-3, oy * 1e-3};
   correction.half_size_m = {hx * 1e-3, hy * 1e-3};
-  for (const char* key : {"sx", "sy"}) {
-    const auto v = numbers(c, key, 3);
+  for (const std::string key : {"sx", "sy", "sxy"}) {
+    if (key == "sxy" && !c.has(key)) continue;  // a correction without cross terms (written before they existed)
+    const auto v = numbers(c, key.c_str(), 3);
     for (const double x : v) {
-      if (std::abs(x) > 100.0) c.fail(key, fmt::format("RANGE: coefficients must lie within ±100, got {}", x));
+      if (std::abs(x) > 100.0) c.fail(key.c_str(), fmt::format("RANGE: coefficients must lie within ±100, got {}", x));
     }
-    (key[1] == 'x' ? correction.sx : correction.sy) = {v[0], v[1], v[2]};
+    (key == "sx" ? correction.sx : key == "sy" ? correction.sy : correction.sxy) = {v[0], v[1], v[2]};
   }
   try {
     return std::make_unique<CorrectedModel>(std::shared_ptr<Model>(std::move(base)), correction);

@@ -4,9 +4,11 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <unistd.h>
 
+#include "kept_commands.hpp"
 #include "stiffpath/calibration/plate.hpp"
 #include "stiffpath/compliance/model_factory.hpp"
 #include "stiffpath/core/atomic_file.hpp"
@@ -58,11 +60,27 @@ TEST_P(PlateOf, MeetsEveryRequirementOfTheDesign) {
   for (const auto& m : plate.strokes) {
     stations.insert(m.id.substr(0, m.id.find('-')));
     const Vec2 u = (m.end_m - m.start_m).normalized();
-    directions.insert(std::lround(std::fmod(std::atan2(u.y(), u.x()) * 180.0 / M_PI + 360.0, 180.0)));
+    if (m.kind != StrokeKind::arc) directions.insert(std::lround(std::fmod(std::atan2(u.y(), u.x()) * 180.0 / M_PI + 360.0, 180.0)));
     accelerations.insert(std::lround(m.acceleration_m_s2));
     timing += m.kind == StrokeKind::timing;
     EXPECT_LE(m.acceleration_m_s2, options.acceleration_m_s2 + 1e-9);
-    EXPECT_GE((m.end_m - m.start_m).norm(), 5e-3) << m.id;
+    // Long enough to show its deflection: a stroke, or a timing stroke's motion (its mark is the middle half, switched
+    // at speed), or an arc of at least 180° and 2.5 mm radius.
+    if (m.kind == StrokeKind::timing) {
+      EXPECT_NEAR(m.run_m, 0.5 * (m.end_m - m.start_m).norm(), 1e-9) << m.id;
+      EXPECT_GE((m.end_m - m.start_m).norm() + 2.0 * m.run_m, 5e-3) << m.id;
+      const auto motion = m.motion_m();
+      ASSERT_EQ(motion.size(), 4u);
+      EXPECT_NEAR(cross(motion[3] - motion[0], m.end_m - m.start_m), 0.0, 1e-12) << m.id;  // collinear
+    } else if (m.kind == StrokeKind::arc) {
+      EXPECT_GE(std::abs(m.sweep_rad), M_PI) << m.id;
+      EXPECT_GE((m.start_m - m.centre_m).norm(), 2.5e-3) << m.id;
+      EXPECT_NEAR((m.end_m - m.centre_m).norm(), (m.start_m - m.centre_m).norm(), 1e-12) << m.id;
+      // Its speed makes the planner's share of the level's acceleration across it: v²/r = 0.7·a.
+      EXPECT_NEAR(m.feed_m_s * m.feed_m_s / (m.start_m - m.centre_m).norm(), 0.7 * m.acceleration_m_s2, 1e-6 * m.acceleration_m_s2) << m.id;
+    } else {
+      EXPECT_GE((m.end_m - m.start_m).norm(), 5e-3) << m.id;
+    }
     if (m.kind == StrokeKind::ringing) {  // the tail at right angles to the stroke, to its left
       const Vec2 t = m.tail_end_m - m.end_m;
       EXPECT_NEAR(t.dot(u), 0.0, 1e-12) << m.id;
@@ -73,6 +91,13 @@ TEST_P(PlateOf, MeetsEveryRequirementOfTheDesign) {
   EXPECT_GE(directions.size(), 3u);
   EXPECT_GE(accelerations.size(), 2u);
   EXPECT_GT(timing, 0);
+  // An arc per station and acceleration level.
+  std::map<std::string, std::set<long>> arcs;
+  for (const auto& m : plate.strokes) {
+    if (m.kind == StrokeKind::arc) arcs[m.id.substr(0, m.id.find('-'))].insert(std::lround(m.acceleration_m_s2));
+  }
+  EXPECT_EQ(arcs.size(), stations.size());
+  for (const auto& [station, levels] : arcs) EXPECT_EQ(levels.size(), options.acceleration_levels.size()) << station;
 
   // Spread over the measured region: the stations' centres span most of it along both axes.
   double x_lo = 1e9, x_hi = -1e9, y_lo = 1e9, y_hi = -1e9;
@@ -132,12 +157,61 @@ TEST(Plate, FileRoundTripsAndItsGcodeNamesEveryMarkAtItsAcceleration) {
     EXPECT_EQ(back.strokes[i].kind, plate.strokes[i].kind);
     EXPECT_LT((back.strokes[i].end_m - plate.strokes[i].end_m).norm(), 1e-9);
     EXPECT_NEAR(back.strokes[i].acceleration_m_s2, plate.strokes[i].acceleration_m_s2, 1e-9);
+    EXPECT_NEAR(back.strokes[i].run_m, plate.strokes[i].run_m, 1e-12);
+    EXPECT_LT((back.strokes[i].centre_m - plate.strokes[i].centre_m).norm(), 1e-9);
+    EXPECT_NEAR(back.strokes[i].sweep_rad, plate.strokes[i].sweep_rad, 1e-12);
   }
   ASSERT_EQ(back.fiducials.size(), plate.fiducials.size());
   const std::string g = plate_gcode(plate);
   for (const auto& m : plate.strokes) EXPECT_NE(g.find("; mark " + m.id + "\n"), std::string::npos);
   EXPECT_NE(g.find("G61"), std::string::npos);  // exact stops: the strokes start and end at rest
   std::filesystem::remove_all(dir);
+}
+
+// The plate as the planner runs it (2 kHz samples of the job without compensation): a timing stroke's laser switches
+// on and off while the tool moves at the stroke's speed; an arc's middle is turned at 0.7 of its level's acceleration
+// (v²/r: the planner keeps the rest for the speed along it).
+TEST(Plate, TimingStrokesSwitchTheLaserAtSpeedAndArcsTurnAtTheirAcceleration) {
+  const auto robot = kinematics::load_robot("oc-gu");
+  const PlateDesign plate = design_plate(robot, region_of(robot));
+  job::JobSpec spec = job::default_job(robot);
+  spec.compensate = false;
+  const auto c = test::commands_of(spec, plate_gcode(plate), "plate.gcode");
+  const auto speed = [&](std::size_t k) { return (c[std::min(k + 1, c.size() - 1)].target_m - c[k > 0 ? k - 1 : 0].target_m).norm() * 1000.0; };
+  int timing = 0, arcs = 0;
+  for (const auto& m : plate.strokes) {
+    if (m.kind == StrokeKind::timing) {
+      ++timing;
+      std::size_t rise = c.size(), fall = c.size();
+      for (std::size_t k = 1; k < c.size(); ++k) {
+        // (the laser switches at the first 2 kHz sample past the point: within one sample's travel of it)
+        if (c[k].laser_on && !c[k - 1].laser_on && (c[k].target_m - m.start_m).norm() < 0.5e-3 * m.feed_m_s + 1e-9) rise = k;
+        if (rise < c.size() && k > rise && !c[k].laser_on && c[k - 1].laser_on) {
+          fall = k;
+          break;
+        }
+      }
+      ASSERT_LT(fall, c.size()) << m.id;
+      EXPECT_LT((c[fall].target_m - m.end_m).norm(), 0.5e-3 * m.feed_m_s + 1e-9) << m.id;
+      EXPECT_GT(speed(rise), 0.9 * m.feed_m_s) << m.id;
+      EXPECT_GT(speed(fall), 0.9 * m.feed_m_s) << m.id;
+    } else if (m.kind == StrokeKind::arc) {
+      ++arcs;
+      const double r = (m.start_m - m.centre_m).norm();
+      const Vec2 middle = m.centre_m + (m.start_m - m.centre_m) * std::cos(0.5 * m.sweep_rad) +
+                          Vec2(-(m.start_m - m.centre_m).y(), (m.start_m - m.centre_m).x()) * std::sin(0.5 * m.sweep_rad);
+      std::size_t at = 0;
+      for (std::size_t k = 0; k < c.size(); ++k) {
+        if (c[k].laser_on && (c[k].target_m - middle).norm() < (c[at].target_m - middle).norm()) at = k;
+      }
+      ASSERT_LT((c[at].target_m - middle).norm(), 0.5e-3) << m.id;
+      const double v = speed(at);
+      EXPECT_GT(v * v / r, 0.68 * m.acceleration_m_s2) << m.id;
+      EXPECT_LT(v * v / r, 0.71 * m.acceleration_m_s2) << m.id;
+    }
+  }
+  EXPECT_GT(timing, 0);
+  EXPECT_GT(arcs, 0);
 }
 
 TEST(Plate, ARegionTooSmallOrBadOptionsAreRefusedWithTheReason) {

@@ -53,8 +53,8 @@ struct Identification {
   TipParameters before, after;
   std::vector<IdentifiedValue> values;
   std::vector<MarkFit> marks;
-  //! The deflection per unit acceleration m·C, after over before, at each station's centre along x and y (the
-  //! correction's sx, sy there), with its standard uncertainty.
+  //! The deflection per unit acceleration m·C, after over before, at each station's centre along x and y
+  //! ((S·C·S)ii / Cii there), with its standard uncertainty.
   struct PointScale {
     Vec2 point_m = Vec2::Zero();
     Vec2 scale = Vec2::Ones();

@@ -26,24 +26,35 @@ struct FiducialMark {
 enum class StrokeKind : std::uint8_t {
   ringing,  //!< a fast stroke then, the laser still on, a slow tail at right angles (to its left), on which the
             //!< tip's ringing after the stop draws a wave (wavelength: the tail's speed over the tip's frequency)
-  timing,   //!< a fast stroke whose laser switches on as it starts and off as it stops: where its ends fall on
-            //!< the paper shows the laser's timing against the motion
+  timing,   //!< a fast stroke whose laser switches on and off at speed: the motion runs up to speed before the
+            //!< mark and on after it (run_m each side, the laser off, collinear and blended), so a delay of the
+            //!< laser moves the mark's ends by the speed times it (0.4 mm per ms at 0.4 m/s)
+  arc,      //!< a fast arc about a centre: its centripetal acceleration acts across the mark, so the mark's radius
+            //!< shows the deflection along every direction the arc turns through. Straight strokes show only the
+            //!< compliance's cross term and the difference of its diagonal (n·Q·u, u ⊥ n); an arc shows n·Q·n,
+            //!< and so the field's size itself
 };
 
-//! A stroke from rest along a direction to rest (exact stops), with or without its tail.
+//! A stroke from rest to rest (exact stops): along a direction, with or without its tail, or along an arc.
 struct StrokeMark {
-  std::string id;                    //!< "S2-D060-A1-R": station, direction (deg), acceleration level, kind
+  std::string id;                    //!< "S2-D060-A1-R", "S2-A1-C": station, direction (deg), acceleration level, kind
   StrokeKind kind = StrokeKind::ringing;
   Vec2 start_m = Vec2::Zero();       //!< robot frame
-  Vec2 end_m = Vec2::Zero();         //!< end of the stroke (start of the tail)
-  Vec2 tail_end_m = Vec2::Zero();    //!< ringing strokes: end of the tail; timing strokes: end_m
+  Vec2 end_m = Vec2::Zero();         //!< end of the stroke (start of the tail; an arc's end)
+  Vec2 tail_end_m = Vec2::Zero();    //!< ringing strokes: end of the tail; the others: end_m
+  Vec2 centre_m = Vec2::Zero();      //!< arcs: the centre (start and end lie on its circle)
+  double sweep_rad = 0.0;            //!< arcs: the angle turned, counter-clockwise positive
   double acceleration_m_s2 = 0.0;    //!< the planner's limit for this mark (M204)
   double feed_m_s = 0.0;             //!< the stroke's programmed speed
   double tail_feed_m_s = 0.0;        //!< the tail's (ringing strokes)
-  //! The commanded path: start, end (and the tail's end for a ringing stroke).
-  [[nodiscard]] std::vector<Vec2> polyline_m() const {
-    return kind == StrokeKind::ringing ? std::vector<Vec2>{start_m, end_m, tail_end_m} : std::vector<Vec2>{start_m, end_m};
-  }
+  double run_m = 0.0;                //!< timing strokes: the run-up before start_m and the run-out after end_m, laser off
+  //! The commanded path: start, end (and the tail's end for a ringing stroke); an arc every 2° at most.
+  [[nodiscard]] std::vector<Vec2> polyline_m() const;
+  //! The unit direction of the path where the mark starts, and where it ends.
+  [[nodiscard]] Vec2 start_direction() const;
+  [[nodiscard]] Vec2 end_direction() const;
+  //! Where the tool moves for the mark: the polyline with a timing stroke's run-up and run-out.
+  [[nodiscard]] std::vector<Vec2> motion_m() const;
 };
 
 //! How a plate is laid out. Documented defaults; every length fits the robot's own measured region.
@@ -56,6 +67,7 @@ struct PlateOptions {
   int stations_x = 2, stations_y = 2;  //!< places spread over the measured region (at least four)
   double tail_length_m = 4e-3;
   double tail_feed_m_s = 0.02;         //!< 20 mm/s: a 40 Hz ringing draws waves 0.5 mm long
+  double arc_sweep_deg = 270.0;        //!< each arc's turn (one per station and acceleration level): 180 … 300°
   double fiducial_feed_m_s = 0.01;     //!< the fiducials' speed (10 mm/s: no deflection to speak of)
   double sheet_long_m = 0.297;         //!< the sheet (A4)
   double sheet_short_m = 0.210;

@@ -14,7 +14,7 @@ using kinematics::Vec2;
 
 //! What a calibration plate identifies, beyond the robot file's values.
 struct TipParameters {
-  //! The compliance field's correction: Q(p) = m·S(p)·C(p)·S(p), the deflection per unit acceleration.
+  //! The compliance field's correction (S symmetric): Q(p) = m·S(p)·C(p)·S(p), the deflection per unit acceleration.
   compliance::ComplianceCorrection correction;
   double damping_ratio = 0.05;    //!< ζ of the tip's modes
   double frequency_scale = 1.0;   //!< the tip's frequency over the one Q implies

@@ -10,17 +10,22 @@
 
 namespace stiffpath::compliance {
 
-//! The smooth correction: S(p) = diag(√sx(p), √sy(p)) with sx, sy linear in the normalised coordinates
-//! x̂ = (x − origin_x)/half_size_x, ŷ likewise: s = c0 + c1·x̂ + c2·ŷ. S·C·S keeps C symmetric positive definite
-//! wherever sx, sy > 0, and scales the deflection along x by sx and along y by sy (cross terms by √(sx·sy)).
+//! The smooth correction: the symmetric S(p) = [√sx(p) k(p); k(p) √sy(p)] with sx, sy and k linear in the normalised
+//! coordinates x̂ = (x − origin_x)/half_size_x, ŷ likewise: s = c0 + c1·x̂ + c2·ŷ. S·C·S stays symmetric positive
+//! definite wherever S is invertible (sx, sy > 0 and √(sx·sy) > k²). With k = 0 it scales the deflection along x by
+//! sx and along y by sy (the cross terms by √(sx·sy)); k turns the field's principal directions, which a change of
+//! the structure (another link, a joint stiffer than the model says) does and a scale alone cannot.
 struct ComplianceCorrection {
   Vec2 origin_m = Vec2::Zero();
   Vec2 half_size_m = Vec2::Ones();    //!< > 0
   std::array<double, 3> sx{1.0, 0.0, 0.0};
   std::array<double, 3> sy{1.0, 0.0, 0.0};
+  std::array<double, 3> sxy{0.0, 0.0, 0.0};  //!< k, S's off-diagonal
 
   //! sx and sy at p (not clamped).
   [[nodiscard]] Vec2 factors(const Vec2& p) const noexcept;
+  //! S at p (sx, sy floored at 10⁻¹²).
+  [[nodiscard]] Mat2 matrix(const Vec2& p) const noexcept;
   //! The identity correction.
   [[nodiscard]] bool identity() const noexcept;
 };
@@ -28,8 +33,8 @@ struct ComplianceCorrection {
 //! `base` with `correction` applied: compliance(p) = S(p)·C_base(p)·S(p), evaluated at the base's policy point.
 class CorrectedModel final : public Model {
  public:
-  //! Throws stiffpath::Error when sx or sy is not positive somewhere on the base's rectangle (a corner: they
-  //! are linear) or a half size is not positive.
+  //! Throws stiffpath::Error when S is not invertible somewhere on the base's rectangle or a half size is not
+  //! positive. Checking the corners suffices: sx, sy are linear, so det S = √(sx·sy) − k² is concave there.
   CorrectedModel(std::shared_ptr<Model> base, ComplianceCorrection correction);
 
   [[nodiscard]] std::optional<FitMethod> method() const noexcept override { return base_->method(); }

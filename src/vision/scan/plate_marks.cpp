@@ -1,4 +1,4 @@
-// A scanned calibration plate: registered by its fiducials, each stroke's centre line measured in a corridor around its command.
+// A scanned calibration plate: registered by its fiducials, each stroke's centre line measured in a corridor around its command (arcs: plate_arc.cpp).
 #include "stiffpath/vision/scan/plate_marks.hpp"
 
 #include <algorithm>
@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <opencv2/imgproc.hpp>
 
+#include "plate_arc.hpp"
 #include "plate_registration.hpp"
 #include "scan_internal.hpp"
 #include "stiffpath/core/error.hpp"
@@ -155,7 +156,20 @@ PlateObservation observe_calibration_plate(const calibration::PlateDesign& plate
   PlateObservation out;
   out.registration = detail::register_plate(plate, grey, dpi, label, options);
   cv::Mat work = grey.clone();
-  for (const auto& stroke : plate.strokes) observe_stroke(stroke, grey, work, dpi, label, options, out);
+  for (const auto& stroke : plate.strokes) {
+    if (stroke.kind != calibration::StrokeKind::arc) {
+      observe_stroke(stroke, grey, work, dpi, label, options, out);
+      continue;
+    }
+    std::string why;
+    auto points = detail::measure_arc(stroke, grey, dpi, out.registration, options.corridor_half_width_m,
+                                      options.corner_trim_m, why);
+    if (points.empty()) {
+      out.warnings.push_back(fmt::format("arc {}: not measured: {}", stroke.id, why));
+    } else {
+      out.marks.push_back({stroke.id, std::move(points)});
+    }
+  }
   return out;
 }
 
