@@ -26,10 +26,27 @@ namespace {
 constexpr std::size_t kMaxPlateCommands = 2'000'000;
 
 struct FitArgs {
-  std::string plate, scan, joints, robot, output, report_dir;
+  std::string plate, scan, joints, robot, output, report_dir, centre_line_csv;
   ModelFlags model;
   bool json = false;
 };
+
+// One row per measured centre-line point of every plate mark, in marking order: its id, the point in the robot
+// frame (mm) and where it lies on the scan (mm from the image's top-left corner, y down).
+std::string centre_line_csv(const std::string& scan, const vision::PlateObservation& seen) {
+  fmt::memory_buffer out;
+  fmt::format_to(std::back_inserter(out),
+                 "# centre lines of the plate's marks measured on {}: x_mm, y_mm in the robot frame (registered by the "
+                 "fiducials), scan_x_mm, scan_y_mm on the scan from its top-left corner, y down\nmark,x_mm,y_mm,scan_x_mm,scan_y_mm\n",
+                 scan);
+  for (const auto& m : seen.marks) {
+    for (const auto& p : m.points_m) {
+      const Eigen::Vector2d q = seen.registration.to_scan(p);
+      fmt::format_to(std::back_inserter(out), "{},{:.4f},{:.4f},{:.4f},{:.4f}\n", m.id, p.x() * 1e3, p.y() * 1e3, q.x() * 1e3, q.y() * 1e3);
+    }
+  }
+  return fmt::to_string(out);
+}
 
 void fit(const FitArgs& a) {
   const auto robot = load_robot_flag(a.robot);
@@ -40,7 +57,8 @@ void fit(const FitArgs& a) {
       a.report_dir.empty() ? out.parent_path() / (out.stem().string() + "_report") : std::filesystem::path(a.report_dir);
   core::check_distinct_files(
       robot_inputs(robot, true, {{"plate", a.plate}, {"scan", a.scan}, {"--joints", a.joints}, {"--model", a.model.model}}),
-      {{"-o", a.output}, {"(the model file)", model_path.string()}, {"(the report)", (report_dir / "calibration.json").string()}});
+      {{"-o", a.output}, {"(the model file)", model_path.string()}, {"(the report)", (report_dir / "calibration.json").string()},
+       {"(the report's misfit data)", (report_dir / "misfit.tsv").string()}, {"--centre-line-csv", a.centre_line_csv}});
   const calibration::PlateDesign plate = calibration::load_plate(a.plate);
   const auto commands = job::read_joint_commands(a.joints, robot.geometry_hash(), kMaxPlateCommands);
   const compliance::LoadedModel base = compliance::load_robot_model(robot, model_request(a.model));
@@ -55,6 +73,7 @@ void fit(const FitArgs& a) {
   cal.report["plate"] = a.plate;
   cal.report["joints"] = a.joints;
   vision::write_scan_calibration(cal, out, model_name, report_dir);
+  if (!a.centre_line_csv.empty()) core::write_file_atomically(a.centre_line_csv, centre_line_csv(a.scan, cal.seen));
   const vision::PlateObservation& seen = cal.seen;
   const calibration::Identification& id = cal.identified;
   const auto& r = seen.registration;
@@ -97,6 +116,9 @@ void add_calibrate_fit_command(CLI::App& app) {
       ->check(output_name())
       ->required();
   cmd->add_option("--report-dir", a->report_dir, "Folder for calibration.json (default: <output>_report beside it)");
+  cmd->add_option("--centre-line-csv", a->centre_line_csv,
+                  "Also write every mark's measured centre line: mark,x_mm,y_mm (robot frame),scan_x_mm,scan_y_mm (scan)")
+      ->check(output_name());
   cmd->add_flag("--json", a->json, "Print the report as JSON");
   cmd->callback([a] { within_resources(a->output, "calibrating from the scan", 0.0, [&] { fit(*a); }); });
 }

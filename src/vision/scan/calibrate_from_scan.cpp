@@ -6,6 +6,7 @@
 #include "stiffpath/core/atomic_file.hpp"
 #include "stiffpath/core/error.hpp"
 #include "stiffpath/core/output_budget.hpp"
+#include "stiffpath/report/calibration_plots.hpp"
 
 namespace stiffpath::vision {
 
@@ -40,7 +41,11 @@ void write_scan_calibration(const ScanCalibration& calibration, const std::files
   const std::string robot_text = calibration.files.robot.dump(2) + "\n";
   (void)kinematics::parse_robot(robot_text, core::DataRef{robot_file.string(), false});
   core::create_output_directory(report_dir);
-  core::write_file_atomically(report_dir / "calibration.json", calibration.report.dump(2) + "\n");
+  nlohmann::json doc = calibration.report;
+  const bool drawn = report::plot_calibration_misfit(report_dir, "misfit", calibration.identified);
+  doc["misfit_data"] = "misfit.tsv";
+  doc["misfit_figure"] = drawn ? nlohmann::json("misfit.svg") : nlohmann::json(nullptr);
+  core::write_file_atomically(report_dir / "calibration.json", doc.dump(2) + "\n");
   core::write_file_atomically(robot_file, robot_text);
 }
 

@@ -33,8 +33,9 @@ ScanCalibration calibrate_from_scan(const kinematics::Robot& robot, const compli
                                     const PlateScanOptions& options = {});
 
 //! Writes the calibration's files, each atomically: the model file (`robot_file`'s folder / `model_file_name` as
-//! given to calibrate_from_scan), then the robot file, once it parses as every command will read it, and
-//! `report_dir`/calibration.json (the folder made when missing).
+//! given to calibrate_from_scan), `report_dir`/misfit.tsv and, with gnuplot, misfit.svg and .png (every mark's
+//! misfit before and after: report::plot_calibration_misfit), `report_dir`/calibration.json (the folder made when
+//! missing), and last the robot file, once it parses as every command will read it.
 void write_scan_calibration(const ScanCalibration& calibration, const std::filesystem::path& robot_file,
                             const std::string& model_file_name, const std::filesystem::path& report_dir);
 
