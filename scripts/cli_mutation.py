@@ -114,6 +114,18 @@ def readers(bin_path, work):
     trials = os.path.join(root, "data", "thesis", "repeatability.csv")
     plate = os.path.join(root, "examples", "plates", "thesis_a4.json")
     gcodes = [os.path.join(root, "examples", g) for g in ("triangle.gcode", "x_motion.gcode", "nameplate.gcode")]
+    # A calibration plate (every kind of mark) and what calibrate fit reads beside it: the plate's joint file and a
+    # small scan with its resolution, on which no fiducial is found (a valid plate ends in exit 2 at the scan).
+    plate_dir = os.path.join(work, "cal")
+    subprocess.run([bin_path, "calibrate", "plate", "--robot", "oc-gu", "-o", plate_dir], check=True,
+                   stdout=subprocess.DEVNULL)
+    cal_plate = os.path.join(plate_dir, "plate.json")
+    cal_joints = os.path.join(plate_dir, "plate_joints.bin")
+    subprocess.run([bin_path, "run", os.path.join(plate_dir, "plate.gcode"), "-o", cal_joints, "--format", "bin"],
+                   check=True, stdout=subprocess.DEVNULL)
+    cal_scan = os.path.join(plate_dir, "scan.png")
+    subprocess.run([bin_path, "render-scan", cal_scan, "--length-mm", "5", "--dpi", "300", "--quiet"], check=True,
+                   stdout=subprocess.DEVNULL)
     return {
         "robot": (robot_seeds, lambda p: [bin_path, "robot", "show", p]),
         "robot_run": (robot_seeds, lambda p: [bin_path, "run", job, "--robot", p, "-o", "/dev/null"]),
@@ -127,6 +139,8 @@ def readers(bin_path, work):
         "gcode": (gcodes, lambda p: [bin_path, "plan", p]),
         "plate": ([plate], lambda p: [bin_path, "render-scan", os.path.join(work, "plate.png"), "--plate", p,
                                       "--dpi", "50"]),
+        "calibration_plate": ([cal_plate], lambda p: [bin_path, "calibrate", "fit", p, cal_scan, "--joints", cal_joints,
+                                                      "--robot", "oc-gu", "-o", os.path.join(work, "cal_out.json")]),
     }
 
 
