@@ -113,6 +113,19 @@ Plate on_bed(const PlateDesign& design, const std::vector<ObservedMark>& marked,
   return plate;
 }
 
+// A calibration plate as laid out for a robot (an A4 sheet) on a bed 16 mm larger than the page, its corner at `at`.
+Plate sheet_on_bed(const PlateDesign& design, const std::vector<ObservedMark>& marked, Vec2 at, double angle_deg, bool mirror) {
+  Plate plate = calibration_render_plate(design, marked);
+  ScannerBed bed;
+  bed.width_m = plate.width_m + 16e-3;
+  bed.height_m = plate.height_m + 16e-3;
+  bed.page_at_m = at;
+  bed.page_angle_rad = angle_deg * kPi / 180;
+  bed.mirror = mirror;
+  plate.bed = bed;
+  return plate;
+}
+
 RenderOptions scanner(double dpi, std::uint64_t seed) {
   RenderOptions o;
   o.dpi = dpi;
@@ -246,15 +259,7 @@ TEST(PlateMarks, ThePresetsPlateIsRegisteredAndEveryStrokeFound) {
   const PlateDesign design = calibration::design_plate(robot, compliance::table_region(compliance::robot_table(robot)));
   std::vector<ObservedMark> commanded;
   for (const auto& s : design.strokes) commanded.push_back({s.id, s.polyline_m()});
-  Plate plate = calibration_render_plate(design, commanded);
-  ScannerBed bed;
-  bed.width_m = plate.width_m + 16e-3;
-  bed.height_m = plate.height_m + 16e-3;
-  bed.page_at_m = {11e-3, 4e-3};
-  bed.page_angle_rad = 1.5 * kPi / 180;
-  bed.mirror = true;
-  plate.bed = bed;
-  const RenderedPlate rendered = render_plate(plate, scanner(300, 36));
+  const RenderedPlate rendered = render_plate(sheet_on_bed(design, commanded, {11e-3, 4e-3}, 1.5, true), scanner(300, 36));
   const PlateObservation seen = observe_calibration_plate(design, rendered.image, rendered.dpi, "plate.png");
   std::printf("[info] %zu warnings at %.0f dpi (sharp corners, ends not round at this resolution)\n", seen.warnings.size(),
               rendered.dpi);
@@ -293,14 +298,7 @@ TEST(PlateMarks, AnArcIsMeasuredOnItsCircleWithoutABias) {
     drawn.push_back(std::move(m));
   }
   for (const double dpi : {600.0, 1200.0}) {
-    Plate plate = calibration_render_plate(design, drawn);
-    ScannerBed bed;
-    bed.width_m = plate.width_m + 16e-3;
-    bed.height_m = plate.height_m + 16e-3;
-    bed.page_at_m = {9e-3, 6e-3};
-    bed.page_angle_rad = 0.8 * kPi / 180;
-    plate.bed = bed;
-    const RenderedPlate rendered = render_plate(plate, scanner(dpi, 41));
+    const RenderedPlate rendered = render_plate(sheet_on_bed(design, drawn, {9e-3, 6e-3}, 0.8, false), scanner(dpi, 41));
     const PlateObservation seen = observe_calibration_plate(design, rendered.image, rendered.dpi, "plate.png");
     double sum = 0, sum2 = 0, worst = 0;
     std::size_t n = 0;
