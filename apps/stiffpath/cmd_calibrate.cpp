@@ -36,16 +36,24 @@ void plate(const PlateArgs& a) {
   core::create_output_directory(dir);
   core::write_file_atomically(dir / "plate.gcode", calibration::plate_gcode(design, options));
   core::write_file_atomically(dir / "plate.json", calibration::plate_json(design));
+  std::size_t ringing = 0, timing = 0, arcs = 0;
+  for (const auto& m : design.strokes) {
+    (m.kind == calibration::StrokeKind::ringing ? ringing : m.kind == calibration::StrokeKind::timing ? timing : arcs) += 1;
+  }
   if (a.json) {
     print_json({{"robot", robot.name},
                 {"fiducials", design.fiducials.size()},
                 {"marks", design.strokes.size()},
+                {"ringing_strokes", ringing},
+                {"timing_strokes", timing},
+                {"arcs", arcs},
                 {"gcode", (dir / "plate.gcode").string()},
                 {"plate", (dir / "plate.json").string()}});
     return;
   }
-  fmt::print("calibration plate for {}: {} fiducials and {} strokes over x [{:.1f}, {:.1f}] mm, y [{:.1f}, {:.1f}] mm\n",
-             robot.name, design.fiducials.size(), design.strokes.size(), units::m_to_mm(design.area.x_min),
+  fmt::print("calibration plate for {}: {} fiducials and {} marks ({} ringing strokes, {} timing strokes, {} arcs) over "
+             "x [{:.1f}, {:.1f}] mm, y [{:.1f}, {:.1f}] mm\n",
+             robot.name, design.fiducials.size(), design.strokes.size(), ringing, timing, arcs, units::m_to_mm(design.area.x_min),
              units::m_to_mm(design.area.x_max), units::m_to_mm(design.area.y_min), units::m_to_mm(design.area.y_max));
   fmt::print("wrote {} and {}\nnext: stiffpath run {} --robot {} -o {} ; mark it, scan the sheet at 1200 dpi, then "
              "stiffpath calibrate fit\n",
