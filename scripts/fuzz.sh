@@ -24,6 +24,7 @@ seeds() {
     c_robot) echo data/robots tests/data/robots tests/data/bad/robot ;;
     image_metadata) echo tests/data/fuzz_seeds/image_metadata tests/data/fuzz_regressions/image_metadata tests/data/bad/image ;;
     plate) echo examples/plates tests/data/fuzz_seeds/plate tests/data/bad/plate ;;
+    calibration_plate) echo tests/data/fuzz_seeds/calibration_plate tests/data/bad/calibration_plate ;;
   esac
 }
 

@@ -38,6 +38,8 @@ const Reader readers[] = {
     {"image", "scan '{}' --overlay out.png", "out.png"},
     {"plate", "render-scan out.png --plate '{}' --dpi 100", "out.png"},
     {"mark_csv", "render-scan out.png --path-csv '{}'", "out.png"},
+    // (the plate is read before the scan and the joint file, which need not exist)
+    {"calibration_plate", "calibrate fit '{}' scan.png --joints joints.bin --robot oc-gu -o out.json", "out.json"},
 };
 
 struct Case {

@@ -4,7 +4,8 @@
 Each case puts one bad value at a known place of an otherwise valid file, so the expected location
 (line:column, or the record number of a binary file) and the offending text are known independently
 of the tool's output. usage: make_corpus.py STIFFPATH_CLI [GROUP...]   (the CLI writes the valid joint and
-model files that some cases start from; GROUPs, default all: tables robots model joints images plates).
+model files that some cases start from; GROUPs, default all: tables robots model joints images plates
+calibration_plates).
 """
 import json
 import re
@@ -309,9 +310,50 @@ def plates():
         write("mark_csv", name, header + rows, f"{line}:{col}" if line else "-", value)
 
 
+def calibration_plates(cli, tmp):
+    """Calibration plates (calibrate plate's plate.json, as calibrate fit reads it): arcs and timing strokes with bad
+    fields, refused at their line and column before the scan is opened."""
+    expect["calibration_plate"] = []
+    subprocess.run([cli, "calibrate", "plate", "--robot", "oc-gu", "-o", os.path.join(tmp, "cal")], check=True,
+                   stdout=subprocess.DEVNULL)
+    with open(os.path.join(tmp, "cal", "plate.json")) as f:
+        doc = json.load(f)
+    # The first station's marks only, each arc's polyline its start and end (the reader needs no more): small files.
+    station = doc["marks"][0]["id"].split("-")[0] + "-"
+    doc["marks"] = [m for m in doc["marks"] if m["id"].startswith(station)]
+    for m in doc["marks"]:
+        if m["kind"] == "arc":
+            m["polyline_mm"] = [m["polyline_mm"][0], m["polyline_mm"][-1]]
+    base = json.dumps(doc, indent=2) + "\n"
+    kinds = [m["kind"] for m in doc["marks"]]
+    first_arc = kinds.index("arc") + 1  # occurrence of an arc's keys among all marks' (only arcs have centre_mm)
+    first_timing = kinds.index("timing")
+    arc = doc["marks"][first_arc - 1]
+    sweep = json.dumps(arc["sweep_deg"])
+    timing_run = json.dumps(doc["marks"][first_timing]["run_mm"])
+    cases = []
+    text = base.replace('"kind": "ringing"', '"kind": "spiral"', 1)
+    cases.append(("kind_spiral.json", text, position(text, '"kind": "spiral"'), "spiral"))
+    text = base.replace(f'"sweep_deg": {sweep}', '"sweep_deg": 5', 1)
+    cases.append(("arc_of_5_deg.json", text, position(text, '"sweep_deg": 5'), "at least 10 deg"))
+    moved = json.loads(base)
+    moved["marks"][first_arc - 1]["centre_mm"][1] += 0.5  # (along x, start and end would stay equally far)
+    text = json.dumps(moved, indent=2) + "\n"
+    cases.append(("arc_end_off_its_circle.json", text, position(text, '"polyline_mm"', first_arc),
+                  "must lie on its circle"))
+    text = base.replace('"kind": "ringing",', '"kind": "ringing",\n      "run_mm": 3,', 1)
+    cases.append(("run_on_a_ringing_stroke.json", text, position(text, '"run_mm": 3'), "only a timing stroke"))
+    text = base.replace(f'"run_mm": {timing_run}', '"run_mm": -1', 1)
+    cases.append(("timing_run_minus_1_mm.json", text, position(text, '"run_mm": -1'), "-1"))
+    text = base.replace('"sweep_deg"', '"sweep_degrees"', 1)
+    cases.append(("arc_misspelt_key.json", text, position(text, '"sweep_degrees"'), "unknown field"))
+    for name, text, where, value in cases:
+        write("calibration_plate", name, text, where, value)
+
+
 def main():
     cli = sys.argv[1]
-    only = set(sys.argv[2:])  # groups to write (default: all): tables robots model joints images plates
+    only = set(sys.argv[2:])  # groups to write (default: all): tables robots model joints images plates calibration_plates
     wanted = lambda group: not only or group in only
     if wanted("tables"):
         tables()
@@ -322,6 +364,8 @@ def main():
             model(cli, tmp)
         if wanted("joints"):
             joints(cli, tmp)
+        if wanted("calibration_plates"):
+            calibration_plates(cli, tmp)
     if wanted("images"):
         images()
     if wanted("plates"):
