@@ -15,6 +15,7 @@
 #include "stiffpath/compliance/model_factory.hpp"
 #include "stiffpath/compliance/model_file.hpp"
 #include "stiffpath/core/atomic_file.hpp"
+#include "stiffpath/evaluation/segment_distance.hpp"
 #include "stiffpath/job/joint_writer.hpp"
 #include "stiffpath/job/prepared_job.hpp"
 #include "stiffpath/vision/io/image_io.hpp"
@@ -130,14 +131,7 @@ TEST(CalibrationLoop, AHeavierPlatformIsFoundFromTheScanOfItsPlate) {
       }
       const auto it = std::find_if(plate.strokes.begin(), plate.strokes.end(), [&](const auto& m) { return m.id == id; });
       ASSERT_NE(it, plate.strokes.end()) << line;
-      const auto path = it->polyline_m();
-      double nearest = 1e9;
-      for (std::size_t k = 0; k + 1 < path.size(); ++k) {
-        const Vec2 d = path[k + 1] - path[k];
-        const double t = std::clamp((Vec2(v[0], v[1]) - path[k]).dot(d) / d.squaredNorm(), 0.0, 1.0);
-        nearest = std::min(nearest, (path[k] + t * d - Vec2(v[0], v[1])).norm());
-      }
-      farthest = std::max(farthest, nearest);
+      farthest = std::max(farthest, evaluation::polyline_distance(Vec2(v[0], v[1]), it->polyline_m()));
       // The page point (x − x_min, y_max − y) turned about the page's corner and moved to it on the bed.
       const Vec2 page(v[0] - plate.sheet.x_min, plate.sheet.y_max - v[1]);
       const Vec2 on_bed = bed.page_at_m + Vec2(c * page.x() - s_ * page.y(), s_ * page.x() + c * page.y());

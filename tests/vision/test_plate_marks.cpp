@@ -12,6 +12,7 @@
 
 #include "stiffpath/compliance/model_factory.hpp"
 #include "stiffpath/core/error.hpp"
+#include "stiffpath/evaluation/segment_distance.hpp"
 #include "stiffpath/kinematics/robot.hpp"
 #include "stiffpath/vision/io/image_io.hpp"
 #include "stiffpath/vision/render/calibration_plate.hpp"
@@ -90,16 +91,6 @@ std::vector<ObservedMark> marked_paths(const PlateDesign& plate) {
   return out;
 }
 
-// Distance from p to the polyline q.
-double distance_to(const std::vector<Vec2>& q, const Vec2& p) {
-  double best = 1e300;
-  for (std::size_t k = 0; k + 1 < q.size(); ++k) {
-    const Vec2 d = q[k + 1] - q[k];
-    const double t = std::clamp((p - q[k]).dot(d) / d.squaredNorm(), 0.0, 1.0);
-    best = std::min(best, (q[k] + t * d - p).norm());
-  }
-  return best;
-}
 
 Plate on_bed(const PlateDesign& design, const std::vector<ObservedMark>& marked, double angle_deg, bool mirror) {
   Plate plate = calibration_render_plate(design, marked);
@@ -160,7 +151,7 @@ TEST(PlateMarks, RegisteredStrokesMatchThePathsDrawnInRobotMetres) {
     ASSERT_GT(got.points_m.size(), 100u) << got.id;
     double sum2 = 0, worst = 0;
     for (const auto& p : got.points_m) {
-      const double e = distance_to(truth[i].points_m, p);
+      const double e = evaluation::polyline_distance(p, truth[i].points_m);
       sum2 += e * e;
       worst = std::max(worst, e);
     }
@@ -269,7 +260,7 @@ TEST(PlateMarks, ThePresetsPlateIsRegisteredAndEveryStrokeFound) {
   double worst = 0, worst_end = 0;
   for (std::size_t i = 0; i < design.strokes.size(); ++i) {
     EXPECT_EQ(seen.marks[i].id, design.strokes[i].id);
-    for (const auto& p : seen.marks[i].points_m) worst = std::max(worst, distance_to(commanded[i].points_m, p));
+    for (const auto& p : seen.marks[i].points_m) worst = std::max(worst, evaluation::polyline_distance(p, commanded[i].points_m));
     if (design.strokes[i].kind == calibration::StrokeKind::arc) continue;  // measured 1 mm short of its ends
     worst_end = std::max({worst_end, (seen.marks[i].points_m.front() - commanded[i].points_m.front()).norm(),
                           (seen.marks[i].points_m.back() - commanded[i].points_m.back()).norm()});

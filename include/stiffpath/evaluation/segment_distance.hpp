@@ -1,7 +1,9 @@
-// The distance from a point to a line segment: the one measure the mark metrics' corner and side code share.
+// The distance from a point to a line segment or a polyline: the one measure mark metrics, scans and tests share.
 #pragma once
 
 #include <algorithm>
+#include <limits>
+#include <span>
 
 #include "stiffpath/evaluation/line_fit.hpp"
 
@@ -13,6 +15,14 @@ namespace stiffpath::evaluation {
   const double len2 = ab.squaredNorm();
   const double s = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
   return (a + s * ab - p).norm();
+}
+
+//! The smallest segment_distance from p to the polyline `path` (to its point when it has one; +∞ when empty).
+[[nodiscard]] inline double polyline_distance(const Point2& p, std::span<const Point2> path) noexcept {
+  if (path.size() == 1) return (p - path.front()).norm();
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k + 1 < path.size(); ++k) best = std::min(best, segment_distance(p, path[k], path[k + 1]));
+  return best;
 }
 
 }  // namespace stiffpath::evaluation

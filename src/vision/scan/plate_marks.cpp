@@ -10,6 +10,7 @@
 #include "plate_registration.hpp"
 #include "scan_internal.hpp"
 #include "stiffpath/core/error.hpp"
+#include "stiffpath/evaluation/segment_distance.hpp"
 #include "stiffpath/vision/io/image_io.hpp"
 #include "stiffpath/vision/scan/scan.hpp"
 
@@ -18,17 +19,6 @@ namespace stiffpath::vision {
 namespace {
 
 constexpr double kPad_m = 1e-3;  // paper kept around a corridor, so the scan sees paper on every side of the mark
-
-// Distance (px) from p to the polyline q.
-double distance_to(const std::vector<Point2>& q, const Point2& p) {
-  double best = 1e300;
-  for (std::size_t k = 0; k + 1 < q.size(); ++k) {
-    const Point2 d = q[k + 1] - q[k];
-    const double t = std::clamp((p - q[k]).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
-    best = std::min(best, (q[k] + t * d - p).norm());
-  }
-  return best;
-}
 
 // Median and robust σ (1.4826 · MAD) of the crop's grey values: the paper's level and noise (the mark is a
 // small part of a corridor's box).
@@ -118,7 +108,7 @@ void observe_stroke(const calibration::StrokeMark& stroke, const cv::Mat& grey, 
   double farthest_px = 0;
   for (const auto& seg : along) {
     for (const auto& p : seg) {
-      farthest_px = std::max(farthest_px, distance_to(command_px, p));
+      farthest_px = std::max(farthest_px, evaluation::polyline_distance(p, command_px));
       mark.points_m.push_back(reg.to_robot(p / px_per_m));
     }
   }
