@@ -1,6 +1,7 @@
 // A plate stroke's commanded geometry: its polyline and its directions at the ends (straight strokes and arcs).
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "stiffpath/calibration/plate.hpp"
 
@@ -23,7 +24,7 @@ Vec2 arc_tangent(const StrokeMark& m, double turned) {
 std::vector<Vec2> StrokeMark::polyline_m() const {
   if (kind == StrokeKind::ringing) return {start_m, end_m, tail_end_m};
   if (kind == StrokeKind::timing) return {start_m, end_m};
-  constexpr double kStep_rad = 2.0 * 3.14159265358979323846 / 180.0;
+  constexpr double kStep_rad = 2.0 * std::numbers::pi / 180.0;
   const int n = std::clamp(static_cast<int>(std::ceil(std::abs(sweep_rad) / kStep_rad)), 1, 720);
   std::vector<Vec2> out;
   out.reserve(static_cast<std::size_t>(n) + 1);

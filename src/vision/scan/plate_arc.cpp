@@ -45,12 +45,12 @@ std::vector<Eigen::Vector2d> measure_arc(const calibration::StrokeMark& arc, con
   const int ink_half = std::max(2, static_cast<int>(std::round(kInkHalf_m * px_per_m / kSample_px)));
   std::vector<double> values(static_cast<std::size_t>(2 * half_samples + 1)), sorted;
   const double sign = arc.sweep_rad >= 0.0 ? 1.0 : -1.0;
-  // The ink's radial offset from the circle on one radial profile at `angle` (px along the scan's normal), or NaN.
-  const auto offset_at = [&](double angle, Vec2& c_px, Vec2& n_px) {
+  // The ink's radial offset from the circle on one radial profile at `angle` (px outwards), or NaN.
+  const auto offset_at = [&](double angle) {
     const Vec2 normal(std::cos(angle), std::sin(angle));
     const Vec2 on_circle = arc.centre_m + radius * normal;
-    c_px = registration.to_scan(on_circle) * px_per_m;
-    n_px = ((registration.to_scan(on_circle + 1e-4 * normal) - registration.to_scan(on_circle)) * px_per_m).normalized();
+    const Vec2 c_px = registration.to_scan(on_circle) * px_per_m;
+    const Vec2 n_px = ((registration.to_scan(on_circle + 1e-4 * normal) - registration.to_scan(on_circle)) * px_per_m).normalized();
     for (int s = -half_samples; s <= half_samples; ++s) {
       const Vec2 p = c_px + (s * kSample_px) * n_px;
       const double g = sample(grey, p.x(), p.y());
@@ -74,20 +74,19 @@ std::vector<Eigen::Vector2d> measure_arc(const calibration::StrokeMark& arc, con
     }
     return moment / sum;
   };
-  // Each point: the mean offset of five profiles a pixel apart along the arc (the paper's grain averages out).
+  // Each point: the mean offset of five profiles a pixel apart along the arc (the paper's grain averages out), set
+  // off radially from the circle in the robot frame (the registration is rigid: a scan pixel is 1/px_per_m there).
   const double pixel_rad = 1.0 / (px_per_m * radius);
   for (int k = 0; k < profiles; ++k) {
     const double angle = from + sign * (trim_m + k * kStep_m) / radius;
     double total = 0.0;
     int found = 0;
-    Vec2 c_px, n_px;
     for (int j = -2; j <= 2; ++j) {
-      const double t = offset_at(angle + j * pixel_rad, c_px, n_px);
+      const double t = offset_at(angle + j * pixel_rad);
       if (std::isfinite(t)) total += t, ++found;
     }
     if (found < 3) continue;
-    (void)offset_at(angle, c_px, n_px);
-    out.push_back(registration.to_robot((c_px + (total / found) * n_px) / px_per_m));
+    out.push_back(arc.centre_m + (radius + total / found / px_per_m) * Vec2(std::cos(angle), std::sin(angle)));
   }
   if (2 * out.size() < static_cast<std::size_t>(profiles)) {
     why = fmt::format("ink found on {} of its {} radial profiles", out.size(), profiles);
