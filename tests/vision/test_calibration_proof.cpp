@@ -1,5 +1,5 @@
 // The calibration's proof on the twin: a robot whose truth is not what its file says marks its plate; the scan
-// calibrates it; held-out jobs are then marked better than without calibration and nearly as well as with the truth.
+// calibrates it; held-out jobs (held_out_jobs.hpp) are then marked nearly as well as with the truth.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -7,19 +7,18 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
-#include <sstream>
 #include <string>
 #include <vector>
 
-#include <fmt/format.h>
-
 #include "cli_runner.hpp"
+#include "held_out_jobs.hpp"
 #include "kept_commands.hpp"
 #include "stiffpath/calibration/plate.hpp"
 #include "stiffpath/compliance/corrected_model.hpp"
 #include "stiffpath/compliance/model_factory.hpp"
 #include "stiffpath/core/atomic_file.hpp"
 #include "stiffpath/core/least_squares.hpp"
+#include "stiffpath/evaluation/segment_distance.hpp"
 #include "stiffpath/job/joint_writer.hpp"
 #include "stiffpath/job/prepared_job.hpp"
 #include "stiffpath/simulation/cg_lever.hpp"
@@ -32,81 +31,6 @@ namespace stiffpath::vision {
 namespace {
 
 using kinematics::Vec2;
-
-// A held-out job: G-code in the robot frame (mm), none of it on the plate.
-struct HeldOut {
-  std::string name;
-  std::string gcode;
-};
-
-std::string mm(double v_m) { return fmt::format("{:.4f}", v_m * 1e3); }
-
-// Triangle, star, hatch, circle, diagonal and two off-grid lines, placed by fractions of the robot's measured
-// region (so any robot gets its own), at the planner's 5 g, exact stops at corners (G61), 2 m/s feed.
-std::vector<HeldOut> held_out_jobs(const compliance::GridBounds& r) {
-  const double w = r.x_max - r.x_min, h = r.y_max - r.y_min;
-  const auto at = [&](double fx, double fy) { return Vec2(r.x_min + fx * w, r.y_min + fy * h); };
-  const auto stroke = [&](const std::vector<Vec2>& pts) {
-    std::string s = fmt::format("G0 X{} Y{}\nM3 S1000\n", mm(pts[0].x()), mm(pts[0].y()));
-    for (std::size_t i = 1; i < pts.size(); ++i) s += fmt::format("G1 X{} Y{} F120000\n", mm(pts[i].x()), mm(pts[i].y()));
-    return s + "M5\n";
-  };
-  const std::string head = "G21 G90 G17 G94\nG61\n";
-  std::vector<HeldOut> jobs;
-  jobs.push_back({"triangle", head + stroke({at(0.2, 0.15), at(0.8, 0.2), at(0.45, 0.85), at(0.2, 0.15)}) + "M2\n"});
-  {
-    std::vector<Vec2> star;
-    const Vec2 c = at(0.55, 0.45);
-    const double radius = 0.35 * std::min(w, h);
-    for (int k = 0; k <= 5; ++k) {
-      const double a = std::numbers::pi / 2 + k * 4.0 * std::numbers::pi / 5.0;
-      star.push_back(c + radius * Vec2(std::cos(a), std::sin(a)));
-    }
-    jobs.push_back({"star", head + stroke(star) + "M2\n"});
-  }
-  {
-    std::string hatch = head;
-    for (int k = 0; k < 8; ++k) {
-      const double fy = 0.2 + 0.085 * k;
-      hatch += k % 2 == 0 ? stroke({at(0.15, fy), at(0.85, fy)}) : stroke({at(0.85, fy), at(0.15, fy)});
-    }
-    jobs.push_back({"hatch", hatch + "M2\n"});
-  }
-  {
-    const Vec2 c = at(0.5, 0.5);
-    const double radius = 0.3 * std::min(w, h);
-    jobs.push_back({"circle", head + fmt::format("G0 X{} Y{}\nM3 S1000\nG2 X{} Y{} I{} J0 F120000\nM5\nM2\n",
-                                                 mm(c.x() - radius), mm(c.y()), mm(c.x() - radius), mm(c.y()),
-                                                 mm(radius))});
-  }
-  jobs.push_back({"diagonal", head + stroke({at(0.1, 0.9), at(0.9, 0.1)}) + "M2\n"});
-  jobs.push_back({"off-grid", head + stroke({at(0.13, 0.37), at(0.71, 0.62)}) + stroke({at(0.33, 0.08), at(0.62, 0.93)}) +
-                                  "M2\n"});
-  return jobs;
-}
-
-// The largest distance of a marked point from the stroke's commanded polyline (the planned path while the laser was
-// on), over every stroke: the max path error.
-double max_path_error_m(const simulation::Stroke& s) {
-  const auto distance = [&](const Vec2& p, std::size_t k) {  // to segment k → k+1
-    const Vec2 a = s.commanded[k], b = s.commanded[std::min(k + 1, s.commanded.size() - 1)];
-    const Vec2 ab = b - a;
-    const double len2 = ab.squaredNorm();
-    const double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-    return (a + t * ab - p).norm();
-  };
-  double worst = 0;
-  std::size_t k = 0;
-  constexpr std::size_t window = 600;  // 0.3 s of samples either side of the sample being marked
-  for (std::size_t i = 0; i < s.marked.size(); ++i) {
-    while (k + 1 < s.first_mark.size() && s.first_mark[k + 1] <= i) ++k;
-    double nearest = 1e300;
-    const std::size_t lo = k > window ? k - window : 0, hi = std::min(s.commanded.size(), k + window);
-    for (std::size_t j = lo; j < hi; ++j) nearest = std::min(nearest, distance(s.marked[i], j));
-    worst = std::max(worst, nearest);
-  }
-  return worst;
-}
 
 // One twin: its truth (C_true of a seed, a platform 10 % lighter than the robot file says, twice its damping, a
 // laser that lights 1 ms and goes dark 0.5 ms after it is told to).
@@ -162,7 +86,7 @@ double twin_error_m(const Twin& twin, const std::vector<compensation::JointComma
   };
   double worst = 0;
   (void)simulation::simulate(source, twin.robot, twin.truth, twin.options,
-                             [&](const simulation::Stroke& s) { worst = std::max(worst, max_path_error_m(s)); });
+                             [&](const simulation::Stroke& s) { worst = std::max(worst, test::max_path_error_m(s)); });
   return worst;
 }
 
@@ -254,13 +178,7 @@ ProofRow one_round(std::uint64_t seed, double dpi, bool loaded_servo = true) {
     (void)simulation::simulate(source, robot, twin.truth, twin.options, [&](const simulation::Stroke& s) {
       if (s.commanded.empty()) return;
       for (const auto& stroke : plate.strokes) {
-        const auto path = stroke.polyline_m();
-        double nearest = 1e9;
-        for (std::size_t k = 0; k + 1 < path.size(); ++k) {
-          const Vec2 d = path[k + 1] - path[k];
-          const double t = std::clamp((s.commanded.front() - path[k]).dot(d) / d.squaredNorm(), 0.0, 1.0);
-          nearest = std::min(nearest, (path[k] + t * d - s.commanded.front()).norm());
-        }
+        const double nearest = evaluation::polyline_distance(s.commanded.front(), stroke.polyline_m());
         if (nearest < 5e-6 && (s.commanded.front() - stroke.start_m).norm() < 2e-3) marked.push_back({stroke.id, s.marked});
       }
     });
@@ -343,7 +261,7 @@ ProofRow one_round(std::uint64_t seed, double dpi, bool loaded_servo = true) {
   job::JobSpec without = job::default_job(robot);
   without.compensate = false;
 
-  for (const auto& job : held_out_jobs(region)) {
+  for (const auto& job : test::held_out_jobs(region)) {
     const auto u = test::commands_of(uncalibrated, job.gcode, job.name + ".gcode");
     const auto c = test::commands_of(calibrated, job.gcode, job.name + ".gcode");
     row.jobs.push_back({job.name, twin_error_m(twin, test::commands_of(without, job.gcode, job.name + ".gcode")) * 1e6,
