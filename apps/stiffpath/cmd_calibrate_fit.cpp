@@ -72,8 +72,9 @@ void fit(const FitArgs& a) {
   }
   cal.report["plate"] = a.plate;
   cal.report["joints"] = a.joints;
-  vision::write_scan_calibration(cal, out, model_name, report_dir);
+  // The centre lines before the calibration's files, whose robot file is written last: it marks a finished fit.
   if (!a.centre_line_csv.empty()) core::write_file_atomically(a.centre_line_csv, centre_line_csv(a.scan, cal.seen));
+  vision::write_scan_calibration(cal, out, model_name, report_dir);
   const vision::PlateObservation& seen = cal.seen;
   const calibration::Identification& id = cal.identified;
   const auto& r = seen.registration;
